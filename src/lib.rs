@@ -1,0 +1,22 @@
+//! coatcheck: qualify a soft coating bonded to a hard substrate against surface roughness.
+//!
+//! Persson's contact mechanics for a layered solid (paper: `../shared/theory/paper.md`;
+//! conventions: `../shared/theory/notes.md`). The physics lives here, independent of the
+//! command line:
+//!
+//! - [`psd`]: roughness power spectra C(q) (tabulated and models, eqs. 2 and 5) and their moments;
+//! - [`layer`]: the layered response S(q) of eq. (7) and the static interface kernels f, g (App. B);
+//! - [`contact`]: G(q), P(q), A/A0 (eqs. B11, B12), rms stresses (B8–B10), distributions, E_eff;
+//! - [`prec`]: tolerances, [`prec::Estimate`] (value, error, termination).
+//!
+//! Units are SI throughout (Pa, m, 1/m, m^4).
+
+pub mod contact;
+pub mod error;
+pub mod layer;
+pub mod prec;
+pub mod psd;
+pub mod quad;
+pub mod units;
+
+pub use error::Error;

@@ -1,0 +1,98 @@
+//! Numerical settings and tolerances, kept in one place.
+//!
+//! Every integral or solver in the crate returns an [`Estimate`]: the value, a
+//! bound-like estimate of its absolute numerical error and how the computation
+//! ended ([`Termination`]). Nothing returns a bare `f64` that could hide a failure.
+//!
+//! All quantities are SI (Pa, m, 1/m, m^4); units are converted only at the edges.
+
+use serde::Serialize;
+
+/// Machine epsilon for `f64`, named for readability in error budgets.
+pub const EPS: f64 = f64::EPSILON;
+
+/// Default relative tolerance of the contact integrals (area, rms stresses).
+pub const DEFAULT_RTOL: f64 = 1e-8;
+
+/// Default exceedance probability that defines a "peak" value (fraction of the interface).
+pub const DEFAULT_EPSILON: f64 = 1e-6;
+
+/// How a numerical computation ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Termination {
+    /// The error estimate is within the requested tolerance.
+    Converged,
+    /// The computation finished but the error estimate exceeds the requested tolerance.
+    ToleranceNotReached,
+    /// A closed form or exact limit was used; the error is rounding only.
+    Exact,
+}
+
+/// A computed value with an estimate of its absolute numerical error.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Estimate {
+    pub value: f64,
+    /// Estimated absolute error (non-negative).
+    pub err: f64,
+    pub status: Termination,
+}
+
+impl Estimate {
+    pub fn new(value: f64, err: f64, status: Termination) -> Self {
+        Self {
+            value,
+            err: err.abs(),
+            status,
+        }
+    }
+
+    /// A value known to rounding: error of a few ulps.
+    pub fn exact(value: f64) -> Self {
+        Self::new(value, 4.0 * EPS * value.abs(), Termination::Exact)
+    }
+
+    /// Relative error estimate (`err / |value|`, or `err` when the value is 0).
+    pub fn rel_err(&self) -> f64 {
+        if self.value == 0.0 {
+            self.err
+        } else {
+            self.err / self.value.abs()
+        }
+    }
+
+    /// Apply a smooth map `y = h(x)` with derivative `dh` at `x`, propagating the error
+    /// to first order and adding rounding of the result.
+    pub fn map(self, h: impl Fn(f64) -> f64, dh: impl Fn(f64) -> f64) -> Self {
+        let value = h(self.value);
+        let err = dh(self.value).abs() * self.err + 4.0 * EPS * value.abs();
+        Self {
+            value,
+            err,
+            status: self.status,
+        }
+    }
+
+    /// The worse of two terminations (used when combining estimates).
+    pub fn worst(a: Termination, b: Termination) -> Termination {
+        use Termination::*;
+        match (a, b) {
+            (ToleranceNotReached, _) | (_, ToleranceNotReached) => ToleranceNotReached,
+            (Converged, _) | (_, Converged) => Converged,
+            _ => Exact,
+        }
+    }
+}
+
+/// Settings of the contact integrals.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Settings {
+    /// Requested relative accuracy of G(q1), the rms stresses and A/A0.
+    pub rtol: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self { rtol: DEFAULT_RTOL }
+    }
+}
