@@ -1,0 +1,272 @@
+//! Heights → PSD (`topography::spectrum`), the synthetic generator, and the readers.
+
+use coatcheck::psd::{Spectrum, Tabulated};
+use coatcheck::topography::spectrum::{PsdOptions, map_psd, profile_psd};
+use coatcheck::topography::synth::{Amplitude, SynthSpec, self_affine_map};
+use coatcheck::topography::{HeightMap, Profile};
+use std::f64::consts::PI;
+
+const N: usize = 256;
+const DX: f64 = 1e-6;
+
+fn q_fund() -> f64 {
+    2.0 * PI / (N as f64 * DX)
+}
+
+/// H = 0.8, roll-off at 8 q_L, cut-off q1 at half the Nyquist wavenumber, rms height 1 µm.
+fn spec(seed: u64) -> SynthSpec {
+    SynthSpec {
+        n: N,
+        dx: DX,
+        hurst: 0.8,
+        q0: 8.0 * q_fund(),
+        q1: 64.0 * q_fund(),
+        amplitude: Amplitude::RmsHeight(1e-6),
+        seed,
+    }
+}
+
+fn all_modes() -> PsdOptions {
+    PsdOptions {
+        cutoff_pixels: 2.0,
+        ..Default::default()
+    }
+}
+
+/// 2π∫ q C dq of a tabulated 2D PSD.
+fn h2_of(c2d: &Tabulated) -> f64 {
+    Spectrum::Tabulated(c2d.clone()).h_rms_sq().value
+}
+
+/// ∫ C1D dq of a tabulated one-sided 1D PSD.
+fn h2_of_1d(c1d: &Tabulated) -> f64 {
+    Spectrum::Tabulated(c1d.clone()).moment(-1).value / (2.0 * PI)
+}
+
+#[test]
+fn synth_map_has_the_requested_rms_and_is_reproducible() {
+    let m = self_affine_map(&spec(7)).unwrap();
+    assert!((m.rms() / 1e-6 - 1.0).abs() < 1e-12, "{}", m.rms());
+    assert_eq!(m, self_affine_map(&spec(7)).unwrap());
+    assert_ne!(m.z, self_affine_map(&spec(8)).unwrap().z);
+    let slope = SynthSpec {
+        amplitude: Amplitude::RmsSlope(0.5),
+        ..spec(7)
+    };
+    let p = map_psd(&self_affine_map(&slope).unwrap(), &all_modes()).unwrap();
+    assert!(
+        (p.summary.rms_slope / 0.5 - 1.0).abs() < 1e-12,
+        "{:?}",
+        p.summary
+    );
+}
+
+#[test]
+fn parseval_map_without_window() {
+    // Discrete Parseval is exact; the binned, interpolated PSD integrates to within 3 %.
+    let m = self_affine_map(&spec(1)).unwrap();
+    let p = map_psd(&m, &all_modes()).unwrap();
+    let s = p.summary;
+    assert!((s.h_rms / m.rms() - 1.0).abs() < 1e-12);
+    assert!((s.h_rms_kept / s.h_rms - 1.0).abs() < 1e-12, "{s:?}");
+    assert!(s.outside_fraction < 1e-12);
+    let r = h2_of(&p.c2d) / s.h_rms.powi(2);
+    eprintln!("map, no window: 2π∫qC dq / h_rms² = {r}");
+    assert!((r - 1.0).abs() < 0.03, "{r}");
+}
+
+#[test]
+fn parseval_map_with_hann_window() {
+    // Surfaces treated as non-periodic: Hann window, power loss corrected by 1/<w²>. Parseval
+    // then holds on average over realisations, not exactly for one map (the window weighs the
+    // centre); with the roll-off at 32 q_L each map holds ~1000 independent patches. Tolerance:
+    // 4 % per map, 2 % for the mean over four maps, mode sum and binned PSD alike.
+    let (mut sum_modes, mut sum_psd) = (0.0, 0.0);
+    for seed in 0..4 {
+        let sp = SynthSpec {
+            q0: 32.0 * q_fund(),
+            q1: 128.0 * q_fund(),
+            ..spec(seed)
+        };
+        let mut m = self_affine_map(&sp).unwrap();
+        m.periodic = false;
+        let p = map_psd(&m, &all_modes()).unwrap();
+        assert!(p.steps.iter().any(|s| s.starts_with("window: hann")));
+        let s = p.summary;
+        let r_modes = (s.h_rms_kept / s.h_rms).powi(2);
+        let r = h2_of(&p.c2d) / s.h_rms.powi(2);
+        eprintln!("map, Hann, seed {seed}: mode sum / h_rms² = {r_modes}, 2π∫qC dq / h_rms² = {r}");
+        assert!((r_modes - 1.0).abs() < 0.04, "{r_modes}");
+        assert!((r - 1.0).abs() < 0.04, "{r}");
+        sum_modes += r_modes / 4.0;
+        sum_psd += r / 4.0;
+    }
+    assert!((sum_modes - 1.0).abs() < 0.02, "{sum_modes}");
+    assert!((sum_psd - 1.0).abs() < 0.02, "{sum_psd}");
+}
+
+fn cos_map(waves: &[(f64, usize, usize)]) -> HeightMap {
+    // Sum of a·cos(2π(mx x/L + my y/L) + phase): each on the grid's modes, periodic.
+    let mut z = vec![0.0; N * N];
+    for iy in 0..N {
+        for ix in 0..N {
+            z[iy * N + ix] = waves
+                .iter()
+                .map(|&(a, mx, my)| {
+                    a * (2.0 * PI * (mx * ix + my * iy) as f64 / N as f64 + 0.3).cos()
+                })
+                .sum();
+        }
+    }
+    HeightMap {
+        nx: N,
+        ny: N,
+        dx: DX,
+        dy: DX,
+        z,
+        periodic: true,
+    }
+}
+
+#[test]
+fn a_sinusoid_lands_at_its_q_with_its_height() {
+    let a = 0.2e-6;
+    let m = cos_map(&[(a, 12, 5)]);
+    let p = map_psd(&m, &all_modes()).unwrap();
+    let q_true = q_fund() * 13.0; // |(12, 5)| = 13
+    let (q, c) = (p.c2d.q(), p.c2d.c_values());
+    let peak = (0..q.len()).max_by(|&i, &j| c[i].total_cmp(&c[j])).unwrap();
+    // The peak bin (mean q of its modes) is the one holding q_true: within half a bin.
+    assert!(
+        (q[peak] / q_true).log10().abs() <= 0.05,
+        "{} vs {q_true}",
+        q[peak]
+    );
+    assert!((p.summary.h_rms_kept / (a / 2f64.sqrt()) - 1.0).abs() < 1e-12);
+    // Everything else is rounding.
+    let rest: f64 = (0..q.len()).filter(|&i| i != peak).map(|i| c[i]).sum();
+    assert!(rest < 1e-20 * c[peak], "{rest:e}");
+}
+
+#[test]
+fn a_sum_of_sinusoids_puts_each_power_at_its_q() {
+    // a at |q| = 10 q_L, b at |q| = 50 q_L; a cut-off between them (λ ≥ 8 px ⇔ q ≤ 32 q_L)
+    // keeps a alone and reports b's share of h_rms² as outside.
+    let (a, b) = (0.3e-6, 0.1e-6);
+    let m = cos_map(&[(a, 6, 8), (b, 30, 40)]);
+    let p = map_psd(
+        &m,
+        &PsdOptions {
+            cutoff_pixels: 8.0,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let s = p.summary;
+    assert!((s.h_rms / ((a * a + b * b) / 2.0).sqrt() - 1.0).abs() < 1e-12);
+    assert!(
+        (s.h_rms_kept / (a / 2f64.sqrt()) - 1.0).abs() < 1e-12,
+        "{s:?}"
+    );
+    let frac = b * b / (a * a + b * b);
+    assert!((s.outside_fraction - frac).abs() < 1e-12, "{s:?}");
+    assert!((s.rms_slope / (a / 2f64.sqrt() * 10.0 * q_fund()) - 1.0).abs() < 1e-12);
+    // Without the cut-off both peaks show, at their q.
+    let p = map_psd(&m, &all_modes()).unwrap();
+    let (q, c) = (p.c2d.q(), p.c2d.c_values());
+    let mut idx: Vec<usize> = (0..q.len()).collect();
+    idx.sort_by(|&i, &j| c[j].total_cmp(&c[i]));
+    let mut top = [q[idx[0]] / q_fund(), q[idx[1]] / q_fund()];
+    top.sort_by(f64::total_cmp);
+    assert!(
+        (top[0] / 10.0).log10().abs() <= 0.05 && (top[1] / 50.0).log10().abs() <= 0.05,
+        "{top:?}"
+    );
+}
+
+/// Log–log least-squares slope of C over q in [lo, hi].
+fn slope(t: &Tabulated, lo: f64, hi: f64) -> f64 {
+    let pts: Vec<(f64, f64)> = t
+        .q()
+        .iter()
+        .zip(t.c_values())
+        .filter(|(q, _)| **q >= lo && **q <= hi)
+        .map(|(q, c)| (q.ln(), c.ln()))
+        .collect();
+    let n = pts.len() as f64;
+    let (mx, my) = pts
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let (sxy, sxx) = pts.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
+        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
+    });
+    sxy / sxx
+}
+
+#[test]
+fn self_affine_map_gives_back_its_psd_and_hurst_exponent() {
+    let sp = spec(3);
+    for periodic in [true, false] {
+        let mut m = self_affine_map(&sp).unwrap();
+        m.periodic = periodic;
+        // Periodic, no window: the periodogram is exact mode by mode (deterministic
+        // amplitudes), so only the bins' convexity bias (C averaged over a bin vs C at its mean
+        // q, ~s²σ²/2) is left: 20 points per decade keep it below 1 %; tolerance 2 %.
+        // Hann window: it mixes neighbouring modes with random phases, a speckle-like scatter
+        // of up to ±17 % per bin at 10 points per decade on one map; tolerance 25 %.
+        let opts = PsdOptions {
+            points_per_decade: if periodic { 20 } else { 10 },
+            ..Default::default()
+        };
+        let p = map_psd(&m, &opts).unwrap();
+        // Reliable range: above the roll-off (2 q0) and below the cut-off.
+        let (lo, hi) = (2.0 * sp.q0, p.summary.q_max.min(sp.q1));
+        let mut worst: f64 = 0.0;
+        for (q, c) in p.c2d.q().iter().zip(p.c2d.c_values()) {
+            if *q >= lo && *q <= hi {
+                worst = worst.max((c / sp.c(*q) - 1.0).abs());
+            }
+        }
+        let h = -slope(&p.c2d, lo, hi) / 2.0 - 1.0;
+        eprintln!("periodic = {periodic}: max |C/C_true - 1| = {worst:.4}, H = {h:.4}");
+        assert!(worst < if periodic { 0.02 } else { 0.25 }, "{worst}");
+        assert!((h - sp.hurst).abs() < 0.05, "{h}");
+    }
+}
+
+fn rows_as_scans(m: &HeightMap) -> Profile {
+    Profile {
+        dx: m.dx,
+        scans: (0..m.ny).map(|iy| m.row(iy).to_vec()).collect(),
+        periodic: m.periodic,
+    }
+}
+
+#[test]
+fn parseval_line_scans() {
+    // Roughness up to the grid's corners (q1 beyond √2 × Nyquist), so that no 1D bin is empty;
+    // the roll-off at 32 q_L keeps the power below the first point (q_L, where the tabulated
+    // PSD starts; ~half a mode's worth) small. Tolerances: mode sum 1e-12 (periodic) or 5 %
+    // (Hann), ∫C1D dq of the binned PSD 3 %.
+    let sp = SynthSpec {
+        q0: 32.0 * q_fund(),
+        q1: 1000.0 * q_fund(),
+        ..spec(4)
+    };
+    let m = self_affine_map(&sp).unwrap();
+    for periodic in [true, false] {
+        let mut pr = rows_as_scans(&m);
+        pr.periodic = periodic;
+        let p = profile_psd(&pr, &all_modes()).unwrap();
+        let s = p.summary;
+        let r_modes = (s.h_rms_kept / s.h_rms).powi(2);
+        let r = h2_of_1d(p.c1d.as_ref().unwrap()) / s.h_rms.powi(2);
+        eprintln!("lines, periodic = {periodic}: mode sum {r_modes}, ∫C1D dq / h² = {r}");
+        if periodic {
+            assert!((r_modes - 1.0).abs() < 1e-12, "{r_modes}");
+        } else {
+            assert!((r_modes - 1.0).abs() < 0.05, "{r_modes}");
+        }
+        assert!((r - 1.0).abs() < 0.03, "{r}");
+    }
+}
