@@ -243,7 +243,18 @@ impl Bins {
         }
         Tabulated::new(q, c)
     }
+
+    /// Modes per point of [`Bins::tabulated`] (same order).
+    fn counts(&self) -> Vec<f64> {
+        (0..self.count.len())
+            .filter(|&b| self.count[b] > 0.0 && self.sum_c[b] > 0.0)
+            .map(|b| self.count[b])
+            .collect()
+    }
 }
+
+/// Bins with at most this many modes are "few-mode" bins (noisy by nature).
+const FEW_MODES: f64 = 4.0;
 
 /// The PSD of a height map.
 pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Error> {
@@ -280,16 +291,16 @@ pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Erro
     let px = orthogonal_polys(nx, deg);
     let py = orthogonal_polys(ny, deg);
     let mut terms: Vec<(usize, usize, f64)> = Vec::new();
-    for i in 0..px.len() {
-        for j in 0..py.len() {
+    for (i, pxi) in px.iter().enumerate() {
+        for (j, pyj) in py.iter().enumerate() {
             if i + j > deg {
                 continue;
             }
             let num: f64 = (0..ny)
                 .into_par_iter()
-                .map(|iy| py[j][iy] * dot(map.row(iy), &px[i]))
+                .map(|iy| pyj[iy] * dot(map.row(iy), pxi))
                 .sum();
-            let c = num / (dot(&px[i], &px[i]) * dot(&py[j], &py[j]));
+            let c = num / (dot(pxi, pxi) * dot(pyj, pyj));
             terms.push((i, j, c));
         }
     }
@@ -377,7 +388,7 @@ pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Erro
                     col[iy] = spec[iy * half + kx];
                 }
                 fy.process(&mut col);
-                let mult = if kx == 0 || (nx % 2 == 0 && kx == nx / 2) {
+                let mult = if kx == 0 || (nx.is_multiple_of(2) && kx == nx / 2) {
                     1.0
                 } else {
                     2.0
@@ -503,7 +514,11 @@ pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd
             .collect();
         fft.process(&mut buf);
         for k in 1..=n / 2 {
-            let fold = if n % 2 == 0 && k == n / 2 { 0.5 } else { 1.0 };
+            let fold = if n.is_multiple_of(2) && k == n / 2 {
+                0.5
+            } else {
+                1.0
+            };
             power[k] += fold * buf[k].norm_sqr() * norm;
         }
     }
@@ -531,14 +546,43 @@ pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd
         ),
         Conversion::PiQShortcut => "1D -> 2D: shortcut C = C1D/(pi q)".into(),
     });
-    if let Some(i) = conv.c.iter().position(|e| !(e.value > 0.0)) {
+    // At the low-q end each bin holds a handful of modes, and the inverse transform (a half
+    // derivative) turns their scatter into C ≤ 0 there. The points up to the last C ≤ 0 among
+    // these few-mode bins are dropped, and said so in the steps; C ≤ 0 anywhere else is an
+    // error.
+    let mut conv = conv;
+    let few = bins
+        .counts()
+        .iter()
+        .take_while(|&&c| c <= FEW_MODES)
+        .count();
+    let lead = conv.c[..few]
+        .iter()
+        .rposition(|e| e.value.is_nan() || e.value <= 0.0)
+        .map_or(0, |i| i + 1);
+    if lead > 0 && lead < conv.c.len() {
+        steps.push(format!(
+            "1D -> 2D: the {lead} lowest-q point(s) (q < {:.4e} 1/m, bins of <= {FEW_MODES} modes) \
+             included C <= 0 from the scatter of the few modes there and were dropped from the \
+             2D PSD (more independent scans help)",
+            conv.q[lead]
+        ));
+        conv.q.drain(..lead);
+        conv.c.drain(..lead);
+    }
+    if let Some(i) = conv
+        .c
+        .iter()
+        .position(|e| e.value.is_nan() || e.value <= 0.0)
+    {
         return Err(Error::invalid(
             "1D -> 2D conversion",
             format!(
                 "C = {:.3e} m^4 at q = {:.4e} 1/m",
                 conv.c[i].value, conv.q[i]
             ),
-            "C > 0: the scans do not look like an isotropic surface here (try fewer points per decade)",
+            "C > 0: the averaged 1D PSD rises too steeply there for an isotropic surface \
+             (more scans, fewer points per decade, or --conversion pi-q-shortcut)",
         ));
     }
     let c2d = conv.into_tabulated()?;

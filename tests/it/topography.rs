@@ -270,3 +270,335 @@ fn parseval_line_scans() {
         assert!((r - 1.0).abs() < 0.03, "{r}");
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// Readers, writers and the command line.
+
+use coatcheck::Error;
+use coatcheck::topography::io::{
+    HeightKind, MapOptions, ProfileOptions, parse_profile, read_height_map, read_profile, sniff,
+    write_height_map, write_profile,
+};
+use std::path::{Path, PathBuf};
+
+fn tmp(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("topo_{name}"))
+}
+
+fn write_tmp(name: &str, text: &str) -> PathBuf {
+    let p = tmp(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn input_line(r: Result<impl std::fmt::Debug, Error>) -> (usize, String) {
+    match r {
+        Err(Error::Input { line, msg, .. }) => (line, msg),
+        other => panic!("expected an input error, got {other:?}"),
+    }
+}
+
+#[test]
+fn height_map_round_trips_through_its_file() {
+    let m = self_affine_map(&SynthSpec { n: 32, ..spec(5) }).unwrap();
+    let p = tmp("map_rt.csv");
+    write_height_map(&p, &m, &["a note".into()]).unwrap();
+    assert_eq!(sniff(&p).unwrap(), Some(HeightKind::Map));
+    let back = read_height_map(&p, &MapOptions::default()).unwrap();
+    assert_eq!(
+        back, m,
+        "shortest round-trip formatting must give back every bit"
+    );
+    // Options override the metadata; dy defaults to the given dx.
+    let o = read_height_map(
+        &p,
+        &MapOptions {
+            dx: Some(2e-6),
+            z_unit: Some("um".into()),
+            periodic: Some(false),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!((o.dx, o.dy, o.periodic), (2e-6, 2e-6, false));
+    assert!((o.z[3] / (m.z[3] * 1e-6) - 1.0).abs() < 1e-15);
+    // No temporary file is left beside the output.
+    let dir = p.parent().unwrap();
+    assert!(
+        std::fs::read_dir(dir).unwrap().all(|e| !e
+            .unwrap()
+            .file_name()
+            .to_string_lossy()
+            .ends_with(".tmp"))
+    );
+}
+
+#[test]
+fn height_map_reader_rejects_bad_input_with_its_line() {
+    let cases: &[(&str, &str, usize, &str)] = &[
+        (
+            "ragged",
+            "# c\n1,2,3,4\n1,2,3,4\n1,2,3\n1,2,3,4\n",
+            4,
+            "expected 4 heights (as on line 2), found 3",
+        ),
+        (
+            "nonnum",
+            "1,2,3,4\n1,2,x,4\n1,2,3,4\n1,2,3,4\n",
+            2,
+            "column 3, found 'x'",
+        ),
+        (
+            "nan",
+            "1,2,3,4\n1,2,3,4\n1,NaN,3,4\n1,2,3,4\n",
+            3,
+            "expected a finite height",
+        ),
+        ("small", "1,2,3,4\n1,2,3,4\n", 2, "expected at least 4 x 4"),
+        (
+            "nopix",
+            "1,2,3,4\n1,2,3,4\n1,2,3,4\n1,2,3,4\n",
+            1,
+            "needs its pixel size",
+        ),
+        (
+            "badmeta",
+            "# coatcheck height map: dx = 1 furlong\n1,2,3,4\n",
+            1,
+            "metadata dx",
+        ),
+    ];
+    for &(name, text, line, needle) in cases {
+        let p = write_tmp(&format!("bad_{name}.csv"), text);
+        let opts = MapOptions {
+            dx: (name != "nopix" && name != "badmeta").then_some(1e-6),
+            ..Default::default()
+        };
+        let (l, msg) = input_line(read_height_map(&p, &opts));
+        assert_eq!(l, line, "{name}: {msg}");
+        assert!(msg.contains(needle), "{name}: '{msg}' lacks '{needle}'");
+    }
+}
+
+#[test]
+fn line_scans_with_x_column_units_and_round_trip() {
+    let text = "x (um); z1 (nm); z2 (nm)\r\n0;1;2\r\n0,5;2;3\r\n1;3;4\r\n1,5;4;5\r\n2;5;6\r\n2,5;6;7\r\n3;7;8\r\n3,5;8;9\r\n";
+    let p = parse_profile(text, Path::new("s.csv"), &ProfileOptions::default()).unwrap();
+    assert!((p.dx / 0.5e-6 - 1.0).abs() < 1e-12);
+    assert_eq!(p.scans.len(), 2);
+    assert!((p.scans[1][7] / 9e-9 - 1.0).abs() < 1e-15);
+    // Heights only, with dx given.
+    let q = parse_profile(
+        "1\n2\n3\n4\n5\n6\n7\n8\n",
+        Path::new("s.csv"),
+        &ProfileOptions {
+            dx: Some(1e-6),
+            z_unit: Some("um".into()),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(
+        q.scans,
+        vec![(1..=8).map(|v| v as f64 * 1e-6).collect::<Vec<_>>()]
+    );
+    // Written and read back.
+    let m = self_affine_map(&SynthSpec { n: 16, ..spec(6) }).unwrap();
+    let pr = Profile {
+        dx: m.dx,
+        scans: vec![m.row(0).to_vec(), m.row(8).to_vec()],
+        periodic: true,
+    };
+    let path = tmp("scans_rt.csv");
+    write_profile(&path, &pr, &[]).unwrap();
+    assert_eq!(sniff(&path).unwrap(), Some(HeightKind::Lines));
+    let back = read_profile(&path, &ProfileOptions::default()).unwrap();
+    assert_eq!(back.scans, pr.scans);
+    assert!((back.dx / pr.dx - 1.0).abs() < 1e-12 && back.periodic);
+}
+
+#[test]
+fn line_scan_reader_rejects_bad_input_with_its_line() {
+    let rows = |extra: &str| {
+        let mut s = String::from("x,z\n");
+        for i in 0..8 {
+            s += &format!("{i},{}\n", i * i);
+        }
+        s + extra
+    };
+    let cases: Vec<(String, ProfileOptions, usize, &str)> = vec![
+        (
+            rows("8\n"),
+            ProfileOptions::default(),
+            10,
+            "expected 2 columns",
+        ),
+        (
+            rows("8,abc\n"),
+            ProfileOptions::default(),
+            10,
+            "found 'abc'",
+        ),
+        (
+            rows("8,inf\n"),
+            ProfileOptions::default(),
+            10,
+            "expected a finite value",
+        ),
+        (
+            rows("9.5,1\n"),
+            ProfileOptions::default(),
+            10,
+            "expected equally spaced x",
+        ),
+        (
+            "x,z\n3,1\n2,1\n1,1\n0,1\n-1,1\n-2,1\n-3,1\n-4,1\n".into(),
+            ProfileOptions::default(),
+            3,
+            "x must increase",
+        ),
+        (
+            "x,z\n0,1\n1,2\n".into(),
+            ProfileOptions::default(),
+            1,
+            "expected at least 8",
+        ),
+        (
+            "1\n2\n3\n4\n5\n6\n7\n8\n".into(),
+            ProfileOptions::default(),
+            1,
+            "at least one column of heights",
+        ),
+        (
+            "z\n1\n2\n3\n4\n5\n6\n7\n8\n".into(),
+            ProfileOptions::default(),
+            1,
+            "need the spacing dx",
+        ),
+        (
+            rows(""),
+            ProfileOptions {
+                dx: Some(2.0),
+                ..Default::default()
+            },
+            1,
+            "was given but the x column has spacing",
+        ),
+        (
+            "x (furlong),z\n".to_string() + &rows("")[4..],
+            ProfileOptions::default(),
+            1,
+            "unknown unit",
+        ),
+    ];
+    for (text, opts, line, needle) in cases {
+        let (l, msg) = input_line(parse_profile(&text, Path::new("s.csv"), &opts));
+        assert_eq!(l, line, "{text:?}: {msg}");
+        assert!(msg.contains(needle), "{text:?}: '{msg}' lacks '{needle}'");
+    }
+}
+
+fn coatcheck(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_coatcheck"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn cli_psd_on_the_bundled_examples() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let map = format!("{root}/examples/data/height-map.csv");
+    let out = tmp("cli_map_psd.csv");
+    let o = coatcheck(&["psd", &map, "--output", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        table.contains("h_rms (all wavelengths)") && table.contains("500.0000 nm"),
+        "{table}"
+    );
+    // The written PSD reads back as a spectrum, with the map's kept h_rms².
+    let (t, w) = coatcheck::psd::read::read_spectrum(&out, &Default::default()).unwrap();
+    assert!(w.is_empty(), "{w:?}");
+    assert!(t.q().len() >= 10);
+    let lines = format!("{root}/examples/data/line-scans.csv");
+    let o = coatcheck(&["psd", &lines, "--format", "json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["kind"], "lines");
+    assert!(v["c1d"].as_array().unwrap().len() == v["q"].as_array().unwrap().len());
+    assert!(
+        v["steps"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|s| s.as_str().unwrap().contains("inverse Abel"))
+    );
+}
+
+#[test]
+fn cli_errors_exit_2_with_one_line_and_write_nothing() {
+    let bad = write_tmp(
+        "cli_bad.csv",
+        "# coatcheck height map: dx = 1e-6 m\n1,2,3,4\n1,2,3\n",
+    );
+    let out = tmp("cli_bad_out.csv");
+    let _ = std::fs::remove_file(&out);
+    let o = coatcheck(&["psd", bad.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("coatcheck: ") && err.contains("cli_bad.csv:3:"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    let o = coatcheck(&["psd", bad.to_str().unwrap(), "--dx", "3 furlong"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = coatcheck(&["psd", "/nonexistent/heights.csv", "--pixel-size", "1um"]);
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn cli_synth_writes_a_map_with_the_requested_rms() {
+    let out = tmp("cli_synth.csv");
+    let o = coatcheck(&[
+        "synth",
+        "--n",
+        "64",
+        "--pixel-size",
+        "1um",
+        "--hurst",
+        "0.7",
+        "--q0",
+        "0.05 1/um",
+        "--q1",
+        "1 1/um",
+        "--rms-height",
+        "2um",
+        "--seed",
+        "3",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let m = read_height_map(&out, &MapOptions::default()).unwrap();
+    assert_eq!((m.nx, m.ny, m.dx), (64, 64, 1e-6));
+    assert!((m.rms() / 2e-6 - 1.0).abs() < 1e-12);
+    let o = coatcheck(&[
+        "synth",
+        "--n",
+        "64",
+        "--pixel-size",
+        "1um",
+        "--q0",
+        "2 1/um",
+        "--q1",
+        "1 1/um",
+        "--rms-slope",
+        "0.1",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+}
