@@ -61,6 +61,9 @@ pub enum HeightKind {
 #[derive(Debug, Clone, Default, PartialEq)]
 struct Meta {
     kind: Option<HeightKind>,
+    /// Map size, used only to reserve memory up front.
+    nx: Option<usize>,
+    ny: Option<usize>,
     dx: Option<f64>,
     dy: Option<f64>,
     periodic: Option<bool>,
@@ -109,6 +112,8 @@ fn parse_meta(line: &str, path: &Path, ln: usize) -> Result<Option<Meta>, Error>
                 })?)
             }
             "z unit" => m.z_unit = Some(v.to_string()),
+            "nx" => m.nx = v.parse().ok(),
+            "ny" => m.ny = v.parse().ok(),
             _ => {}
         }
     }
@@ -363,6 +368,10 @@ pub fn read_height_map(path: &Path, opts: &MapOptions) -> Result<HeightMap, Erro
         if t.starts_with('#') || t.starts_with('%') || t.starts_with("//") {
             if let Some(m) = parse_meta(t, path, ln)? {
                 meta = m;
+                if let (Some(a), Some(b)) = (meta.nx, meta.ny) {
+                    // Reserve exactly (capped at 2^28 heights): no doubling reallocations.
+                    z.reserve_exact(a.saturating_mul(b).min(1 << 28));
+                }
             }
             continue;
         }
