@@ -73,7 +73,9 @@ fn main() {
     let hwm = vm_hwm_kib().unwrap_or(0);
     let heights_mib = (n * n * 8) as f64 / 1048576.0;
     let half_mib = (n * (n / 2 + 1) * 16) as f64 / 1048576.0;
-    println!("| map | file | runs | read (median) | psd (median) | total | peak RSS (VmHWM) | heights + half spectrum | PSD points |");
+    println!(
+        "| map | file | runs | read (median) | psd (median) | total | peak RSS (VmHWM) | heights + half spectrum | PSD points |"
+    );
     println!("|---|---|---|---|---|---|---|---|---|");
     println!(
         "| {n} x {n} | {:.0} MiB | {runs} | {:.2} s | {:.2} s | {:.2} s | {:.0} MiB (start {:.0} MiB) | {:.0} MiB | {points} |",

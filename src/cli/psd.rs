@@ -6,12 +6,9 @@
 
 use coatcheck::Error;
 use coatcheck::topography::convert::Conversion;
-use coatcheck::topography::io::{
-    self, HeightKind, MapOptions, ProfileOptions, read_height_map, read_profile,
-};
-use coatcheck::topography::spectrum::{
-    Detrend, PsdOptions, TopographyPsd, Window, map_psd, profile_psd,
-};
+use coatcheck::topography::io::{self, HeightKind};
+use coatcheck::topography::spectrum::{Detrend, PsdOptions, TopographyPsd, Window};
+use coatcheck::topography::{HeightFileOptions, psd_of_file};
 use coatcheck::units::{Dim, parse_quantity};
 use comfy_table::Table;
 use std::io::Write;
@@ -123,24 +120,6 @@ pub fn run(a: PsdArgs) -> Result<i32, Error> {
     let dx = length("--dx", &a.dx)?;
     let px = length("--pixel-size", &a.pixel_size)?;
     let py = length("--pixel-size-y", &a.pixel_size_y)?;
-    let kind = match a.kind {
-        KindArg::Lines => HeightKind::Lines,
-        KindArg::Map => HeightKind::Map,
-        KindArg::Auto => match io::sniff(&a.file)? {
-            Some(k) => k,
-            None if dx.is_some() => HeightKind::Lines,
-            None if px.is_some() => HeightKind::Map,
-            None => {
-                return Err(Error::Input {
-                    path: a.file.clone(),
-                    line: 1,
-                    msg: "cannot tell line scans from a height map: give --dx (line scans), \
-                          --pixel-size (map) or --kind"
-                        .into(),
-                });
-            }
-        },
-    };
     let periodic = a.periodic.then_some(true);
     let opts = PsdOptions {
         detrend: a.detrend.map(|d| match d {
@@ -159,32 +138,20 @@ pub fn run(a: PsdArgs) -> Result<i32, Error> {
             ConversionArg::PiQShortcut => Conversion::PiQShortcut,
         },
     };
-    let result = match kind {
-        HeightKind::Lines => {
-            let p = read_profile(
-                &a.file,
-                &ProfileOptions {
-                    dx,
-                    x_unit: a.x_unit.clone(),
-                    z_unit: a.z_unit.clone(),
-                    periodic,
-                },
-            )?;
-            profile_psd(&p, &opts)?
-        }
-        HeightKind::Map => {
-            let m = read_height_map(
-                &a.file,
-                &MapOptions {
-                    dx: px,
-                    dy: py,
-                    z_unit: a.z_unit.clone(),
-                    periodic,
-                },
-            )?;
-            map_psd(&m, &opts)?
-        }
+    let file = HeightFileOptions {
+        kind: match a.kind {
+            KindArg::Auto => None,
+            KindArg::Lines => Some(HeightKind::Lines),
+            KindArg::Map => Some(HeightKind::Map),
+        },
+        dx,
+        pixel_size: px,
+        pixel_size_y: py,
+        x_unit: a.x_unit.clone(),
+        z_unit: a.z_unit.clone(),
+        periodic,
     };
+    let (kind, result) = psd_of_file(&a.file, &file, &opts)?;
     let input = a.file.display().to_string();
     if let Some(out) = &a.output {
         io::write_atomic(out, |w| write_csv(w, &input, &result))?;

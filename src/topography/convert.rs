@@ -36,6 +36,7 @@ use crate::error::Error;
 use crate::prec::{EPS, Estimate, Termination};
 use crate::psd::{Spectrum, Tabulated};
 use crate::quad;
+use rayon::prelude::*;
 use std::f64::consts::PI;
 
 /// Widest panel (in u) integrated with one pair of Gauss–Legendre rules.
@@ -193,7 +194,11 @@ pub fn c2d_from_c1d(q: &[f64], c1d: &[f64], method: Conversion) -> Result<Conver
             let x: Vec<f64> = q.iter().map(|v| v.ln()).collect();
             let y: Vec<f64> = f.iter().map(|v| v.ln()).collect();
             let m = hermite_slopes(&x, &y);
-            let c = (0..n).map(|j| inverse_at(&x, &y, &m, s_tail, j)).collect();
+            // O(n²) work in all (each point integrates over all points above it): in parallel.
+            let c = (0..n)
+                .into_par_iter()
+                .map(|j| inverse_at(&x, &y, &m, s_tail, j))
+                .collect();
             Ok(Converted {
                 q: q.to_vec(),
                 c,

@@ -13,7 +13,8 @@
 //! - [`io`]: readers (line scans, height maps) and the height-map writer;
 //! - [`spectrum`]: detrend → window → FFT → radial average → log binning → cut-off;
 //! - [`convert`]: the exact 1D ↔ 2D PSD relation of an isotropic surface (Abel pair);
-//! - [`synth`]: self-affine random-phase surfaces with a known PSD.
+//! - [`synth`]: self-affine random-phase surfaces with a known PSD;
+//! - [`psd_of_file`]: file → PSD in one call (`coatcheck psd`, `coatcheck check --profile`).
 
 pub mod convert;
 pub mod io;
@@ -58,4 +59,75 @@ impl HeightMap {
         let mean = self.z.iter().sum::<f64>() / n;
         (self.z.iter().map(|z| (z - mean).powi(2)).sum::<f64>() / n).sqrt()
     }
+}
+
+/// How to read a height file for [`psd_of_file`] (lengths in m; units as strings like `um`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct HeightFileOptions {
+    /// Line scans or map; `None`: from the file (metadata comment, or a header line means
+    /// line scans), else from which spacing was given (`dx`: line scans, `pixel_size`: map).
+    pub kind: Option<io::HeightKind>,
+    /// Line scans: sample spacing, for files without an x column.
+    pub dx: Option<f64>,
+    /// Height map: pixel size along x (and y unless `pixel_size_y`).
+    pub pixel_size: Option<f64>,
+    pub pixel_size_y: Option<f64>,
+    pub x_unit: Option<String>,
+    pub z_unit: Option<String>,
+    /// `Some(true)`: the data are one period of a periodic surface.
+    pub periodic: Option<bool>,
+}
+
+/// Read a height file (line scans or a height map) and compute its PSD: the pipeline behind
+/// `coatcheck psd` and `coatcheck check --profile`. Returns what the file held and the result.
+pub fn psd_of_file(
+    path: &std::path::Path,
+    file: &HeightFileOptions,
+    opts: &spectrum::PsdOptions,
+) -> Result<(io::HeightKind, spectrum::TopographyPsd), crate::Error> {
+    use io::HeightKind;
+    let kind = match file.kind {
+        Some(k) => k,
+        None => match io::sniff(path)? {
+            Some(k) => k,
+            None if file.dx.is_some() => HeightKind::Lines,
+            None if file.pixel_size.is_some() => HeightKind::Map,
+            None => {
+                return Err(crate::Error::Input {
+                    path: path.to_path_buf(),
+                    line: 1,
+                    msg: "cannot tell line scans from a height map: give the spacing dx \
+                          (line scans), the pixel size (map) or the kind"
+                        .into(),
+                });
+            }
+        },
+    };
+    let result = match kind {
+        HeightKind::Lines => {
+            let p = io::read_profile(
+                path,
+                &io::ProfileOptions {
+                    dx: file.dx,
+                    x_unit: file.x_unit.clone(),
+                    z_unit: file.z_unit.clone(),
+                    periodic: file.periodic,
+                },
+            )?;
+            spectrum::profile_psd(&p, opts)?
+        }
+        HeightKind::Map => {
+            let m = io::read_height_map(
+                path,
+                &io::MapOptions {
+                    dx: file.pixel_size,
+                    dy: file.pixel_size_y,
+                    z_unit: file.z_unit.clone(),
+                    periodic: file.periodic,
+                },
+            )?;
+            spectrum::map_psd(&m, opts)?
+        }
+    };
+    Ok((kind, result))
 }

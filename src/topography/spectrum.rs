@@ -254,7 +254,7 @@ impl Bins {
 }
 
 /// Bins with at most this many modes are "few-mode" bins (noisy by nature).
-const FEW_MODES: f64 = 4.0;
+pub const FEW_MODES: f64 = 4.0;
 
 /// The PSD of a height map.
 pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Error> {
@@ -445,9 +445,20 @@ fn outside(total: f64, kept: f64) -> f64 {
     }
 }
 
-/// The PSD of line scans: the 1D PSD averaged over the scans, and the isotropic 2D PSD from it
-/// by the exact inverse Abel transform (or the option's shortcut).
-pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd, Error> {
+/// The 1D stage of the line-scan pipeline: the one-sided 1D PSD averaged over the scans and
+/// binned, with the summary and steps so far.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinePsd {
+    /// One-sided 1D PSD (m^3), binned, within the kept range.
+    pub c1d: Tabulated,
+    pub summary: Summary,
+    pub steps: Vec<String>,
+    /// How many of the lowest points come from bins of at most [`FEW_MODES`] modes.
+    pub few_mode_points: usize,
+}
+
+/// The 1D PSD of line scans (no conversion to 2D).
+pub fn profile_c1d(profile: &Profile, opts: &PsdOptions) -> Result<LinePsd, Error> {
     check_options(opts)?;
     let n = profile.scans.first().map_or(0, Vec::len);
     if n < 8 || profile.scans.iter().any(|s| s.len() != n) {
@@ -538,6 +549,37 @@ pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd
         opts.cutoff_pixels
     ));
     let c1d = bins.tabulated("1D PSD")?;
+    let summary = Summary {
+        h_rms: (sq / (n as f64 * scans)).sqrt(),
+        h_rms_kept: bins.kept.sqrt(),
+        rms_slope: (2.0 * bins.kept_q2).sqrt(),
+        rms_curvature: (8.0 / 3.0 * bins.kept_q4).sqrt(),
+        q_min: q_lo,
+        q_max: q_hi,
+        outside_fraction: outside(bins.total, bins.kept),
+    };
+    let few_mode_points = bins
+        .counts()
+        .iter()
+        .take_while(|&&c| c <= FEW_MODES)
+        .count();
+    Ok(LinePsd {
+        c1d,
+        summary,
+        steps,
+        few_mode_points,
+    })
+}
+
+/// The PSD of line scans: the 1D PSD averaged over the scans, and the isotropic 2D PSD from it
+/// by the exact inverse Abel transform (or the option's shortcut).
+pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd, Error> {
+    let LinePsd {
+        c1d,
+        summary,
+        mut steps,
+        few_mode_points: few,
+    } = profile_c1d(profile, opts)?;
     let conv = convert::c2d_from_c1d(c1d.q(), c1d.c_values(), opts.conversion)?;
     steps.push(match opts.conversion {
         Conversion::InverseAbel => format!(
@@ -551,11 +593,6 @@ pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd
     // these few-mode bins are dropped, and said so in the steps; C ≤ 0 anywhere else is an
     // error.
     let mut conv = conv;
-    let few = bins
-        .counts()
-        .iter()
-        .take_while(|&&c| c <= FEW_MODES)
-        .count();
     let lead = conv.c[..few]
         .iter()
         .rposition(|e| e.value.is_nan() || e.value <= 0.0)
@@ -586,15 +623,6 @@ pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd
         ));
     }
     let c2d = conv.into_tabulated()?;
-    let summary = Summary {
-        h_rms: (sq / (n as f64 * scans)).sqrt(),
-        h_rms_kept: bins.kept.sqrt(),
-        rms_slope: (2.0 * bins.kept_q2).sqrt(),
-        rms_curvature: (8.0 / 3.0 * bins.kept_q4).sqrt(),
-        q_min: q_lo,
-        q_max: q_hi,
-        outside_fraction: outside(bins.total, bins.kept),
-    };
     Ok(TopographyPsd {
         c2d,
         c1d: Some(c1d),

@@ -1,7 +1,7 @@
 //! Heights → PSD (`topography::spectrum`), the synthetic generator, and the readers.
 
 use coatcheck::psd::{Spectrum, Tabulated};
-use coatcheck::topography::spectrum::{PsdOptions, map_psd, profile_psd};
+use coatcheck::topography::spectrum::{PsdOptions, map_psd, profile_c1d, profile_psd};
 use coatcheck::topography::synth::{Amplitude, SynthSpec, self_affine_map};
 use coatcheck::topography::{HeightMap, Profile};
 use std::f64::consts::PI;
@@ -601,4 +601,93 @@ fn cli_synth_writes_a_map_with_the_requested_rms() {
         out.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn detrending_removes_exactly_its_polynomial() {
+    // A plane plus a quadratic bowl on a non-periodic map: tilt removal leaves the bowl's
+    // non-planar part, curvature removal leaves nothing (to rounding); a line scan likewise.
+    let n = 64;
+    let z: Vec<f64> = (0..n * n)
+        .map(|i| {
+            let (x, y) = ((i % n) as f64, (i / n) as f64);
+            1e-6 * (3.0 + 0.2 * x - 0.1 * y) + 1e-9 * (x * x - 0.5 * x * y + 2.0 * y * y)
+        })
+        .collect();
+    let m = HeightMap {
+        nx: n,
+        ny: n,
+        dx: DX,
+        dy: DX,
+        z,
+        periodic: false,
+    };
+    let with = |d| PsdOptions {
+        detrend: Some(d),
+        window: Some(coatcheck::topography::spectrum::Window::None),
+        ..all_modes()
+    };
+    use coatcheck::topography::spectrum::Detrend;
+    let tilt = map_psd(&m, &with(Detrend::Tilt)).unwrap().summary.h_rms;
+    let curv = map_psd(&m, &with(Detrend::Curvature))
+        .unwrap()
+        .summary
+        .h_rms;
+    assert!(tilt > 1e-7, "{tilt:e}");
+    assert!(curv < 1e-12 * m.rms(), "{curv:e} vs {:e}", m.rms());
+    // Line scan: quadratic + a sine off the grid's modes. After curvature removal h_rms must
+    // be the rms of the sine's residual from its own least-squares quadratic, computed here
+    // independently by solving the 3 × 3 normal equations (Cramer's rule).
+    let sine: Vec<f64> = (0..n)
+        .map(|i| 1e-3 * (2.0 * PI * 5.3 * i as f64 / n as f64).sin())
+        .collect();
+    let scan: Vec<f64> = (0..n)
+        .map(|i| 2.0 + 0.3 * i as f64 - 0.01 * (i * i) as f64 + sine[i])
+        .collect();
+    let mom = |k: i32| (0..n).map(|i| (i as f64).powi(k)).sum::<f64>();
+    let rhs = |k: i32| (0..n).map(|i| (i as f64).powi(k) * sine[i]).sum::<f64>();
+    let a = [
+        [mom(0), mom(1), mom(2)],
+        [mom(1), mom(2), mom(3)],
+        [mom(2), mom(3), mom(4)],
+    ];
+    let b = [rhs(0), rhs(1), rhs(2)];
+    let det3 = |m: [[f64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    let d = det3(a);
+    let coef: Vec<f64> = (0..3)
+        .map(|c| {
+            let mut mc = a;
+            for r in 0..3 {
+                mc[r][c] = b[r];
+            }
+            det3(mc) / d
+        })
+        .collect();
+    let expect = ((0..n)
+        .map(|i| {
+            let x = i as f64;
+            (sine[i] - coef[0] - coef[1] * x - coef[2] * x * x).powi(2)
+        })
+        .sum::<f64>()
+        / n as f64)
+        .sqrt();
+    let pr = Profile {
+        dx: DX,
+        scans: vec![scan],
+        periodic: false,
+    };
+    let got = profile_c1d(&pr, &with(Detrend::Curvature))
+        .unwrap()
+        .summary
+        .h_rms;
+    assert!((got / expect - 1.0).abs() < 1e-8, "{got:e} vs {expect:e}");
+    let tilt = profile_c1d(&pr, &with(Detrend::Tilt))
+        .unwrap()
+        .summary
+        .h_rms;
+    assert!(tilt > 10.0 * expect, "{tilt:e}");
 }
