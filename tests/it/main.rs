@@ -1,4 +1,5 @@
 //! Integration tests: one binary, one module per area.
+mod layer;
 mod psd_convert;
 mod psd_read;
 mod topography;
