@@ -52,7 +52,10 @@ pub enum FormatArg {
 }
 
 /// Heights → PSD. Height units: --z-unit (default m, or the file's header or metadata).
+/// Exit code 0 on success; 2 on bad input, with one line on stderr naming the file and line,
+/// and no output file written.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Exit codes: 0 success, 2 bad input or a numerical failure.")]
 pub struct PsdArgs {
     /// Line scans (`x,z…` columns, or `z…` with --dx) or a height map (CSV matrix).
     pub file: PathBuf,

@@ -102,7 +102,7 @@ pub fn run(a: SynthArgs) -> Result<i32, Error> {
         spec.c0(),
         spec.seed
     );
-    match a.line_scans {
+    let what = match a.line_scans {
         Some(k) => {
             if k == 0 || k > map.ny {
                 return Err(Error::invalid(
@@ -118,16 +118,20 @@ pub fn run(a: SynthArgs) -> Result<i32, Error> {
                 periodic: true,
             };
             write_profile(&a.output, &p, std::slice::from_ref(&note))?;
+            format!("{k} line scans of {} points, rows of", map.nx)
         }
-        None => write_height_map(&a.output, &map, std::slice::from_ref(&note))?,
-    }
+        None => {
+            write_height_map(&a.output, &map, std::slice::from_ref(&note))?;
+            "the height map".to_string()
+        }
+    };
     println!(
-        "wrote {} ({} x {} pixels of {:e} m; rms height {:e} m)\n{note}",
-        a.output.display(),
+        "wrote {what} a {} x {} map of {:e} m pixels (rms height {:e} m) to {}\n{note}",
         map.nx,
         map.ny,
         map.dx,
-        map.rms()
+        map.rms(),
+        a.output.display()
     );
     Ok(0)
 }
