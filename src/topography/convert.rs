@@ -17,7 +17,9 @@
 //! substitution k = q cosh u (forward) or q = k cosh u (inverse) removes it exactly:
 //! dk/√(k² − q²) = du, leaving smooth integrands that 10- and 5-point Gauss–Legendre rules
 //! integrate on panels no wider than 0.25 in u, split at the data's knots (the difference of
-//! the two rules is the error estimate).
+//! the two rules is the error estimate). In the inverse transform, data segments more than a
+//! factor 2 above k see a smooth kernel; they are integrated in ln q on fixed nodes shared by
+//! all k, which makes the O(n²) conversion cheap.
 //!
 //! Tabulated C1D enters through its derivative, so it is interpolated smoothly: ln C1D as a
 //! piecewise cubic Hermite polynomial in ln q with second-order three-point knot slopes (a
@@ -194,10 +196,11 @@ pub fn c2d_from_c1d(q: &[f64], c1d: &[f64], method: Conversion) -> Result<Conver
             let x: Vec<f64> = q.iter().map(|v| v.ln()).collect();
             let y: Vec<f64> = f.iter().map(|v| v.ln()).collect();
             let m = hermite_slopes(&x, &y);
+            let far = far_segments(&x, &y, &m);
             // O(n²) work in all (each point integrates over all points above it): in parallel.
             let c = (0..n)
                 .into_par_iter()
-                .map(|j| inverse_at(&x, &y, &m, s_tail, j))
+                .map(|j| inverse_at(&x, &y, &m, &far, s_tail, j))
                 .collect();
             Ok(Converted {
                 q: q.to_vec(),
@@ -230,15 +233,104 @@ fn hermite_slopes(x: &[f64], y: &[f64]) -> Vec<f64> {
     m
 }
 
+/// P and P′ of the cubic Hermite interpolant on segment i at ln q.
+fn hermite(x: &[f64], y: &[f64], m: &[f64], i: usize, lnq: f64) -> (f64, f64) {
+    let h = x[i + 1] - x[i];
+    let t = (lnq - x[i]) / h;
+    let (t2, t3) = (t * t, t * t * t);
+    let p = (2.0 * t3 - 3.0 * t2 + 1.0) * y[i]
+        + (t3 - 2.0 * t2 + t) * h * m[i]
+        + (-2.0 * t3 + 3.0 * t2) * y[i + 1]
+        + (t3 - t2) * h * m[i + 1];
+    let dp = ((6.0 * t2 - 6.0 * t) * (y[i] - y[i + 1])) / h
+        + (3.0 * t2 - 4.0 * t + 1.0) * m[i]
+        + (3.0 * t2 - 2.0 * t) * m[i + 1];
+    (p, dp)
+}
+
+/// Quadrature nodes of one data segment in ln q, used where the segment lies at q ≥ 2k: there
+/// the kernel 1/√(q² − k²) is smooth, so fixed nodes serve every k. Per node: q² and the
+/// weight times q·dC1D/dq = C1D·P′, for the 10- and the 5-point rule (panels ≤ 0.25 in ln q).
+struct FarSegment {
+    q2_10: Vec<f64>,
+    g10: Vec<f64>,
+    q2_5: Vec<f64>,
+    g5: Vec<f64>,
+}
+
+/// Nearest distance in ln q between k and a segment integrated with [`FarSegment`] nodes.
+const FAR: f64 = std::f64::consts::LN_2;
+
+fn far_segments(x: &[f64], y: &[f64], m: &[f64]) -> Vec<FarSegment> {
+    let (x10, w10) = quad::gl10();
+    let (x5, w5) = quad::gl5();
+    (0..x.len() - 1)
+        .map(|i| {
+            let (a, b) = (x[i], x[i + 1]);
+            let panels = ((b - a) / PANEL).ceil().max(1.0) as usize;
+            let h = (b - a) / panels as f64;
+            let mut seg = FarSegment {
+                q2_10: Vec::new(),
+                g10: Vec::new(),
+                q2_5: Vec::new(),
+                g5: Vec::new(),
+            };
+            for p in 0..panels {
+                let mid = a + (p as f64 + 0.5) * h;
+                for (xs, ws, q2, g) in [
+                    (x10, w10, &mut seg.q2_10, &mut seg.g10),
+                    (x5, w5, &mut seg.q2_5, &mut seg.g5),
+                ] {
+                    for (&xn, &wn) in xs.iter().zip(ws) {
+                        let lnq = mid + 0.5 * h * xn;
+                        let (pv, dp) = hermite(x, y, m, i, lnq);
+                        q2.push((2.0 * lnq).exp());
+                        g.push(0.5 * h * wn * pv.exp() * dp);
+                    }
+                }
+            }
+            seg
+        })
+        .collect()
+}
+
 /// C(k) at k = q[j] by the inverse Abel transform of C1D = exp(P(ln q)), P the cubic Hermite
 /// interpolant of the knots (x, y) = (ln q, ln C1D) with slopes m, continued beyond the last
-/// knot as the power law q^s_tail.
-fn inverse_at(x: &[f64], y: &[f64], m: &[f64], s_tail: f64, j: usize) -> Estimate {
+/// knot as the power law q^s_tail. Segments within a factor 2 of k are integrated in
+/// u = acosh(q/k) (singularity removed), those beyond with the fixed nodes of `far`.
+fn inverse_at(
+    x: &[f64],
+    y: &[f64],
+    m: &[f64],
+    far: &[FarSegment],
+    s_tail: f64,
+    j: usize,
+) -> Estimate {
     let n = x.len();
     let lnk = x[j];
+    let k2 = (2.0 * lnk).exp();
     let (mut v, mut d, mut a, mut panels) = (0.0, 0.0, 0.0, 0);
     for i in j..n - 1 {
-        let h = x[i + 1] - x[i];
+        panels += 1;
+        if x[i] - lnk >= FAR {
+            let f = &far[i];
+            let s10: f64 = f
+                .q2_10
+                .iter()
+                .zip(&f.g10)
+                .map(|(q2, g)| g / (q2 - k2).sqrt())
+                .sum();
+            let s5: f64 = f
+                .q2_5
+                .iter()
+                .zip(&f.g5)
+                .map(|(q2, g)| g / (q2 - k2).sqrt())
+                .sum();
+            v += s10;
+            d += (s10 - s5).abs();
+            a += s10.abs();
+            continue;
+        }
         let breaks = [
             (x[i].max(lnk) - lnk).exp().acosh(),
             (x[i + 1] - lnk).exp().acosh(),
@@ -246,21 +338,12 @@ fn inverse_at(x: &[f64], y: &[f64], m: &[f64], s_tail: f64, j: usize) -> Estimat
         // dC1D/dq = C1D(q) P'(ln q)/q, written in u with ln q = ln k + ln cosh u.
         let (vi, di, ai) = integrate(&breaks, PANEL, |u| {
             let lnq = lnk + u.cosh().ln();
-            let t = (lnq - x[i]) / h;
-            let (t2, t3) = (t * t, t * t * t);
-            let p = (2.0 * t3 - 3.0 * t2 + 1.0) * y[i]
-                + (t3 - 2.0 * t2 + t) * h * m[i]
-                + (-2.0 * t3 + 3.0 * t2) * y[i + 1]
-                + (t3 - t2) * h * m[i + 1];
-            let dp = ((6.0 * t2 - 6.0 * t) * (y[i] - y[i + 1])) / h
-                + (3.0 * t2 - 4.0 * t + 1.0) * m[i]
-                + (3.0 * t2 - 2.0 * t) * m[i + 1];
+            let (p, dp) = hermite(x, y, m, i, lnq);
             (p - lnq).exp() * dp
         });
         v += vi;
         d += di;
         a += ai;
-        panels += 1;
     }
     // Tail: the integrand falls like e^{(s−1)u}; 42 e-folds leave < 1e-18 of it.
     let (xn, yn) = (x[n - 1], y[n - 1]);
