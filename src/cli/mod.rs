@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 
 mod psd;
+mod response;
 mod synth;
 
 #[derive(Parser)]
@@ -19,6 +20,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Layer response S, f, g over q·d (eq. 7 and the static App. B kernels; Fig. 14).
+    Response(response::ResponseArgs),
     /// Heights (line scans or a height map) → power spectrum C(q), with a summary.
     Psd(psd::PsdArgs),
     /// Write a synthetic self-affine surface (fixed seed) as a height map or line scans.
@@ -28,6 +31,7 @@ enum Command {
 pub fn run() -> i32 {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Response(a) => response::run(a),
         Command::Psd(a) => psd::run(a),
         Command::Synth(a) => synth::run(a),
     };
