@@ -13,6 +13,8 @@
 //! between the spectrum's own knots (its data points, q0, q_r, q1, or steps of Q/2 across the
 //! Gaussian band), so no feature of the data is smoothed away.
 
+pub mod read;
+
 use crate::error::Error;
 use crate::prec::{Estimate, Termination};
 use crate::quad;

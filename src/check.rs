@@ -1,0 +1,853 @@
+//! The design checks of `coatcheck check` (definitions: notes.md, "Distributions and peak
+//! values" and "Minimum thickness"; paper App. B, eqs. B8–B12, Figs. 6–7).
+//!
+//! - `bond-shear`: the interface shear is Gaussian with rms τ_rms (eq. B9); its peak at exceedance
+//!   ε solves erfc(τ_peak/(√2 τ_rms)) = ε. It must not exceed τ_bond / safety factor. Also
+//!   reported: P(|τ| > τ_bond), the fraction of the interface where the bond strength is exceeded.
+//! - `substrate-yield`: the mean pressure in real contact p0·A0/A (A/A0 = P(q1), eq. B11) and the
+//!   ε-peak of the interface normal stress (Persson's form centred at p0 with the interface width
+//!   σ_rms(d), eq. B8) must not exceed σ_yield / safety factor; the larger governs.
+//! - `min-thickness`: the smallest d_min such that the checks above pass at every d ≥ d_min. The
+//!   given thickness passes it when d ≥ d_min.
+//!
+//! A check's margin is the unused fraction of its limit: 1 − value/limit for an upper limit
+//! (stresses), 1 − d_min/d for the thickness; a check passes when its margin is ≥ 0.
+//!
+//! ## Minimum thickness: why scan, then refine
+//! τ_rms(d) is not monotone: it rises as the film thins and falls to 0 as d → 0 (a vanishing film
+//! has a frictionless top), so pass/fail in d can change more than once and a bisection on the
+//! whole range can land inside a failing band. [`Checker::min_thickness`] therefore
+//! 1. starts at the bulk bound d_hi = 50/q_L (q_L the spectrum's lowest wavenumber): the interface
+//!    kernels f, g decay like (1 + qd)e^{−qd}, at most twice that on a stiff substrate, so at
+//!    q_L·d = 50 the interface stresses are below 1e-19 of the surface ones and S(qd) = 1 to
+//!    rounding: every thicker film behaves the same. If d_hi fails, no thickness passes;
+//! 2. steps down in ln d with [`POINTS_PER_DECADE`] points per decade and stops at the first
+//!    failing thickness (the largest failing sample). Only the upper end of the failing region
+//!    matters for d_min, so nothing thinner is evaluated;
+//! 3. guards against a failing band narrower than the step: at every sampled local maximum of
+//!    the utilisation (value/limit) above [`PEAK_GUARD`] it maximises the utilisation between the
+//!    neighbouring samples by golden-section search and treats the maximiser as a failing sample
+//!    when it fails;
+//! 4. refines the pass/fail crossing by bisection in ln d until the bracket's relative width is at
+//!    most [`D_MIN_RTOL`]; d_min is the bracket's geometric midpoint and its error the half-width;
+//! 5. stops at the floor d_lo = max(1 nm, min(1e-6/q_L, 1e-4/q_hi)): below it the whole spectrum is
+//!    in the thin-film limit (every mode has q·d ≤ 1e-4) where the stresses no longer rise, and a
+//!    film thinner than 1 nm is not a continuum. When every sample down to d_lo passes, d_min is
+//!    reported as d_lo with `all_pass_to_floor` set.
+//!
+//! Each evaluation during the search requests only what the enabled checks need (bond-shear:
+//! τ_rms; substrate-yield: A/A0 and σ_rms at the interface), reusing one [`Engine`] per spectrum.
+
+use crate::contact::{Contact, Engine, Request};
+use crate::error::Error;
+use crate::layer::{Bilayer, Stack};
+use crate::prec::{Estimate, Settings, Termination};
+use crate::psd::Spectrum;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// Scan density of the minimum-thickness search (points per decade of d).
+pub const POINTS_PER_DECADE: f64 = 8.0;
+/// Relative width of the final d_min bracket (0.2 %: d_min to ±0.1 %).
+pub const D_MIN_RTOL: f64 = 2e-3;
+/// The bulk bound: q_L·d at which the film is effectively infinitely thick.
+pub const BULK_QD: f64 = 50.0;
+/// Sampled local maxima of the utilisation above this are refined (narrow failing bands).
+pub const PEAK_GUARD: f64 = 0.5;
+/// The thinnest film considered (m).
+pub const THINNEST: f64 = 1e-9;
+
+/// The checks that can be enabled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CheckKind {
+    BondShear,
+    SubstrateYield,
+    MinThickness,
+}
+
+impl CheckKind {
+    pub const ALL: [CheckKind; 3] = [
+        CheckKind::BondShear,
+        CheckKind::SubstrateYield,
+        CheckKind::MinThickness,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            CheckKind::BondShear => "bond-shear",
+            CheckKind::SubstrateYield => "substrate-yield",
+            CheckKind::MinThickness => "min-thickness",
+        }
+    }
+
+    pub fn from_name(s: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|c| c.name() == s.trim())
+    }
+}
+
+/// Which checks run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Checks {
+    pub bond_shear: bool,
+    pub substrate_yield: bool,
+    pub min_thickness: bool,
+}
+
+impl Checks {
+    pub fn all() -> Self {
+        Self {
+            bond_shear: true,
+            substrate_yield: true,
+            min_thickness: true,
+        }
+    }
+
+    pub fn none() -> Self {
+        Self {
+            bond_shear: false,
+            substrate_yield: false,
+            min_thickness: false,
+        }
+    }
+
+    pub fn enable(&mut self, c: CheckKind) {
+        match c {
+            CheckKind::BondShear => self.bond_shear = true,
+            CheckKind::SubstrateYield => self.substrate_yield = true,
+            CheckKind::MinThickness => self.min_thickness = true,
+        }
+    }
+
+    /// The engine quantities the stress checks need.
+    pub fn request(&self) -> Request {
+        Request {
+            sigma_top: false,
+            sigma_interface: self.substrate_yield,
+            tau_interface: self.bond_shear,
+            e_eff: false,
+        }
+    }
+}
+
+/// Pass/fail criteria.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Criteria {
+    /// Exceedance probability that defines a peak value (fraction of the interface area).
+    pub epsilon: f64,
+    /// Limits are strengths divided by this (≥ 1).
+    pub safety_factor: f64,
+    pub checks: Checks,
+}
+
+impl Default for Criteria {
+    fn default() -> Self {
+        Self {
+            epsilon: crate::prec::DEFAULT_EPSILON,
+            safety_factor: 1.0,
+            checks: Checks::all(),
+        }
+    }
+}
+
+/// A coating design without its thickness: the layers, the load, the strengths and criteria.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Design {
+    pub layers: Bilayer,
+    /// Nominal pressure p0 (Pa).
+    pub pressure: f64,
+    /// Substrate yield strength (Pa); required by substrate-yield.
+    pub yield_strength: Option<f64>,
+    /// Bond shear strength (Pa).
+    pub bond_strength: f64,
+    pub criteria: Criteria,
+}
+
+/// The outcome of one check at one thickness.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CheckResult {
+    pub kind: CheckKind,
+    /// The checked value (Pa for stresses, m for min-thickness).
+    pub value: Estimate,
+    /// The limit (`None` for min-thickness when no thickness passes).
+    pub limit: Option<f64>,
+    /// Unused fraction of the limit (≥ 0 passes); `None` when there is no limit.
+    pub margin: Option<f64>,
+    pub pass: bool,
+    /// True when the value is within its error estimate of the limit (the verdict is fragile).
+    pub undecided: bool,
+}
+
+/// Everything computed at one thickness.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Evaluation {
+    pub contact: Contact,
+    /// p0·A0/A (Pa).
+    pub mean_contact_pressure: Estimate,
+    /// τ at exceedance ε (Pa).
+    pub tau_peak: Option<Estimate>,
+    /// P(|τ| > τ_bond).
+    pub bond_exceedance: Option<f64>,
+    /// Interface normal stress at exceedance ε (Pa).
+    pub sigma_peak_interface: Option<Estimate>,
+    /// P(σ_interface > σ_yield).
+    pub yield_exceedance: Option<f64>,
+    /// bond-shear and substrate-yield (those enabled).
+    pub checks: Vec<CheckResult>,
+}
+
+/// The minimum thickness.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MinThickness {
+    /// d_min with the bracket half-width as error; `None` when no thickness passes.
+    pub thickness: Option<Estimate>,
+    /// The check that fails just below d_min (or at every thickness when none passes).
+    pub governing: Option<CheckKind>,
+    /// The scan range [d_lo, d_hi].
+    pub floor: f64,
+    pub bulk: f64,
+    /// Every scanned thickness passed down to the floor (d_min is then the floor).
+    pub all_pass_to_floor: bool,
+    /// Engine evaluations used.
+    pub evaluations: usize,
+}
+
+/// The verdict for one design at its thickness.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Outcome {
+    pub thickness: f64,
+    pub evaluation: Evaluation,
+    pub min_thickness: Option<MinThickness>,
+    /// All enabled checks (stress checks, then min-thickness).
+    pub checks: Vec<CheckResult>,
+    pub pass: bool,
+    /// The enabled check with the smallest margin (the one that decides the verdict).
+    pub governing: Option<CheckKind>,
+    pub warnings: Vec<String>,
+}
+
+/// One spectrum and one design, with the engine's d-independent precomputation.
+pub struct Checker {
+    engine: Engine,
+    design: Design,
+    q_low: f64,
+    q_high: f64,
+}
+
+impl Checker {
+    pub fn new(spectrum: &Spectrum, design: Design, settings: Settings) -> Result<Self, Error> {
+        let c = &design.criteria;
+        if !(c.epsilon.is_finite() && c.epsilon > 0.0 && c.epsilon < 1.0) {
+            return Err(Error::invalid("epsilon", c.epsilon, "0 < epsilon < 1"));
+        }
+        if !(c.safety_factor.is_finite() && c.safety_factor > 0.0) {
+            return Err(Error::invalid(
+                "safety factor",
+                c.safety_factor,
+                "a finite factor > 0",
+            ));
+        }
+        if !(design.pressure.is_finite() && design.pressure > 0.0) {
+            return Err(Error::invalid(
+                "pressure",
+                design.pressure,
+                "a finite nominal pressure > 0 in Pa",
+            ));
+        }
+        if !(design.bond_strength.is_finite() && design.bond_strength > 0.0) {
+            return Err(Error::invalid(
+                "bond shear strength",
+                design.bond_strength,
+                "a finite strength > 0 in Pa",
+            ));
+        }
+        if c.checks.substrate_yield && design.yield_strength.is_none() {
+            return Err(Error::invalid(
+                "substrate",
+                "no yield strength",
+                "a substrate yield_strength for the substrate-yield check",
+            ));
+        }
+        let (q_low, q_high) = spectrum.support();
+        Ok(Self {
+            engine: Engine::new(spectrum, settings),
+            design,
+            q_low,
+            q_high,
+        })
+    }
+
+    pub fn design(&self) -> &Design {
+        &self.design
+    }
+
+    fn stack(&self, thickness: f64) -> Result<Stack, Error> {
+        if !(thickness.is_finite() && thickness > 0.0) {
+            return Err(Error::invalid(
+                "thickness",
+                thickness,
+                "a finite film thickness > 0 in m",
+            ));
+        }
+        Ok(Stack {
+            layers: self.design.layers,
+            thickness,
+        })
+    }
+
+    fn limit(&self, strength: f64) -> f64 {
+        strength / self.design.criteria.safety_factor
+    }
+
+    /// Everything at one thickness: all engine quantities and the stress checks.
+    pub fn evaluate(&self, thickness: f64) -> Result<Evaluation, Error> {
+        let contact = self
+            .engine
+            .evaluate(&self.stack(thickness)?, self.design.pressure, Request::all())?;
+        self.assess(contact, true)
+    }
+
+    /// The stress checks from a contact result. With `extras`, also the exceedances of the
+    /// limits themselves (not needed while searching for d_min).
+    fn assess(&self, contact: Contact, extras: bool) -> Result<Evaluation, Error> {
+        let d = &self.design;
+        let eps = d.criteria.epsilon;
+        let p0 = d.pressure;
+        let area = contact.area_fraction;
+        if !(area.value > 0.0) {
+            return Err(Error::Numerical {
+                what: "contact area",
+                detail: format!("A/A0 = {} at d = {} m", area.value, contact.thickness),
+            });
+        }
+        let mean_contact_pressure = area.map(|a| p0 / a, |a| p0 / (a * a));
+        let on = d.criteria.checks;
+        let mut checks = Vec::new();
+        let (mut tau_peak, mut bond_exceedance) = (None, None);
+        if let Some(tau) = contact.tau_rms_interface {
+            let k = tails::tau_peak(1.0, eps);
+            let peak = tau.map(|t| k * t, |_| k);
+            if on.bond_shear {
+                checks.push(upper_check(
+                    CheckKind::BondShear,
+                    peak,
+                    self.limit(d.bond_strength),
+                ));
+            }
+            tau_peak = Some(peak);
+            if extras {
+                bond_exceedance = Some(tails::tau_exceedance(tau.value, d.bond_strength));
+            }
+        }
+        let (mut sigma_peak_interface, mut yield_exceedance) = (None, None);
+        if let Some(sigma) = contact.sigma_rms_interface {
+            let peak_at = |s: f64| tails::normal_peak(p0, s, eps);
+            let v = peak_at(sigma.value);
+            let dv = (peak_at(sigma.value + sigma.err) - v).abs();
+            let peak = Estimate::new(v, dv + 8.0 * crate::prec::EPS * v, sigma.status);
+            if let Some(y) = d.yield_strength {
+                if on.substrate_yield {
+                    let governing = if peak.value >= mean_contact_pressure.value {
+                        peak
+                    } else {
+                        mean_contact_pressure
+                    };
+                    checks.push(upper_check(
+                        CheckKind::SubstrateYield,
+                        governing,
+                        self.limit(y),
+                    ));
+                }
+                if extras {
+                    yield_exceedance = Some(tails::normal_exceedance(p0, sigma.value, y));
+                }
+            }
+            sigma_peak_interface = Some(peak);
+        }
+        Ok(Evaluation {
+            contact,
+            mean_contact_pressure,
+            tau_peak,
+            bond_exceedance,
+            sigma_peak_interface,
+            yield_exceedance,
+            checks,
+        })
+    }
+
+    /// Utilisation (value/limit, > 1 fails) of the enabled stress checks at `thickness`, with the
+    /// check that has the largest; only what those checks need is computed.
+    fn utilisation(&self, thickness: f64) -> Result<(f64, Option<CheckKind>), Error> {
+        let req = self.design.criteria.checks.request();
+        let contact = self
+            .engine
+            .evaluate(&self.stack(thickness)?, self.design.pressure, req)?;
+        let ev = self.assess(contact, false)?;
+        let mut worst = (0.0, None);
+        for c in &ev.checks {
+            let u = c.value.value / c.limit.unwrap_or(f64::INFINITY);
+            if u > worst.0 || worst.1.is_none() {
+                worst = (u, Some(c.kind));
+            }
+        }
+        Ok(worst)
+    }
+
+    /// The scan range [d_lo, d_hi] of the minimum-thickness search (module docs).
+    pub fn scan_range(&self) -> (f64, f64) {
+        let lo = (1e-6 / self.q_low).min(1e-4 / self.q_high).max(THINNEST);
+        let hi = BULK_QD / self.q_low;
+        (lo.min(hi), hi)
+    }
+
+    /// The smallest thickness above which every enabled stress check passes (module docs).
+    pub fn min_thickness(&self) -> Result<MinThickness, Error> {
+        let (lo, hi) = self.scan_range();
+        let mut evaluations = 0usize;
+        let mut util = |d: f64| {
+            evaluations += 1;
+            self.utilisation(d)
+        };
+        let (u_hi, kind_hi) = util(hi)?;
+        let none_pass = |kind, evaluations| MinThickness {
+            thickness: None,
+            governing: kind,
+            floor: lo,
+            bulk: hi,
+            all_pass_to_floor: false,
+            evaluations,
+        };
+        if kind_hi.is_none() {
+            // No stress check enabled: every thickness passes.
+            return Ok(MinThickness {
+                thickness: Some(Estimate::exact(lo)),
+                governing: None,
+                floor: lo,
+                bulk: hi,
+                all_pass_to_floor: true,
+                evaluations,
+            });
+        }
+        if u_hi > 1.0 {
+            return Ok(none_pass(kind_hi, evaluations));
+        }
+        let step = (10f64).ln() / POINTS_PER_DECADE;
+        let n = ((hi / lo).ln() / step).ceil().max(1.0) as usize;
+        let h = (hi / lo).ln() / n as f64;
+        // Samples from the top: (ln d, utilisation).
+        let mut samples: Vec<(f64, f64)> = vec![(hi.ln(), u_hi)];
+        let mut failing: Option<(f64, f64)> = None; // (ln d failing, ln d passing above it)
+        for k in 1..=n {
+            let x = hi.ln() - k as f64 * h;
+            let (u, _) = util(x.exp())?;
+            samples.push((x, u));
+            if u > 1.0 {
+                failing = Some((x, samples[k - 1].0));
+                break;
+            }
+            // A sampled local maximum: look between the neighbours for a narrow failing band.
+            if k >= 2 {
+                let (a, b, c) = (samples[k - 2], samples[k - 1], samples[k]);
+                if b.1 > a.1 && b.1 >= c.1 && b.1 > PEAK_GUARD {
+                    let (xm, um) = golden_max(c.0, a.0, |x| util(x.exp()).map(|r| r.0))?;
+                    if um > 1.0 {
+                        failing = Some((xm, a.0));
+                        break;
+                    }
+                }
+            }
+        }
+        let Some((mut x_fail, mut x_pass)) = failing else {
+            return Ok(MinThickness {
+                thickness: Some(Estimate::exact(lo)),
+                governing: None,
+                floor: lo,
+                bulk: hi,
+                all_pass_to_floor: true,
+                evaluations,
+            });
+        };
+        let mut governing = None;
+        while x_pass - x_fail > D_MIN_RTOL.ln_1p() {
+            let mid = 0.5 * (x_pass + x_fail);
+            let (u, kind) = util(mid.exp())?;
+            if u > 1.0 {
+                x_fail = mid;
+                governing = kind;
+            } else {
+                x_pass = mid;
+            }
+        }
+        if governing.is_none() {
+            governing = util(x_fail.exp())?.1;
+        }
+        let (d_fail, d_pass) = (x_fail.exp(), x_pass.exp());
+        let mid = (0.5 * (x_fail + x_pass)).exp();
+        Ok(MinThickness {
+            thickness: Some(Estimate::new(
+                mid,
+                0.5 * (d_pass - d_fail),
+                Termination::Converged,
+            )),
+            governing,
+            floor: lo,
+            bulk: hi,
+            all_pass_to_floor: false,
+            evaluations,
+        })
+    }
+
+    /// The full check at the design's thickness: all quantities, the enabled checks, d_min.
+    pub fn run(&self, thickness: f64) -> Result<Outcome, Error> {
+        let evaluation = self.evaluate(thickness)?;
+        let checks_on = self.design.criteria.checks;
+        let min_thickness = if checks_on.min_thickness {
+            Some(self.min_thickness()?)
+        } else {
+            None
+        };
+        let mut checks = evaluation.checks.clone();
+        let mut warnings = Vec::new();
+        if let Some(m) = &min_thickness {
+            let value = Estimate::exact(thickness);
+            checks.push(match m.thickness {
+                Some(dm) => {
+                    let pass = thickness >= dm.value;
+                    CheckResult {
+                        kind: CheckKind::MinThickness,
+                        value,
+                        limit: Some(dm.value),
+                        margin: Some(1.0 - dm.value / thickness),
+                        pass,
+                        undecided: (thickness - dm.value).abs() <= dm.err,
+                    }
+                }
+                None => CheckResult {
+                    kind: CheckKind::MinThickness,
+                    value,
+                    limit: None,
+                    margin: None,
+                    pass: false,
+                    undecided: false,
+                },
+            });
+            if m.thickness.is_none() {
+                warnings.push(
+                    "no film thickness passes: even a bulk film fails the enabled checks".into(),
+                );
+            } else if m.all_pass_to_floor {
+                warnings.push(format!(
+                    "every thickness down to the scan floor {:.3e} m passes; d_min is reported as that floor",
+                    m.floor
+                ));
+            }
+        }
+        for c in &checks {
+            if c.undecided {
+                warnings.push(format!(
+                    "{}: the value is within its numerical error of the limit; the verdict is fragile",
+                    c.kind.name()
+                ));
+            }
+            if c.value.status == Termination::ToleranceNotReached {
+                warnings.push(format!(
+                    "{}: the requested tolerance was not reached (error estimate {:.2e})",
+                    c.kind.name(),
+                    c.value.err
+                ));
+            }
+        }
+        if evaluation.contact.low_octave_share > 0.5 {
+            warnings.push(format!(
+                "{:.0} % of the contact stress variance comes from the lowest octave of the spectrum: the result depends on where the data start (q_min)",
+                100.0 * evaluation.contact.low_octave_share
+            ));
+        }
+        let pass = checks.iter().all(|c| c.pass);
+        let governing = checks
+            .iter()
+            .min_by(|a, b| {
+                let ma = a.margin.unwrap_or(f64::NEG_INFINITY);
+                let mb = b.margin.unwrap_or(f64::NEG_INFINITY);
+                ma.total_cmp(&mb)
+            })
+            .map(|c| c.kind);
+        Ok(Outcome {
+            thickness,
+            evaluation,
+            min_thickness,
+            checks,
+            pass,
+            governing,
+            warnings,
+        })
+    }
+
+    /// Evaluations at many thicknesses, in parallel.
+    pub fn sweep(&self, thicknesses: &[f64]) -> Result<Vec<Evaluation>, Error> {
+        thicknesses.par_iter().map(|&d| self.evaluate(d)).collect()
+    }
+}
+
+/// A stress check against an upper limit.
+fn upper_check(kind: CheckKind, value: Estimate, limit: f64) -> CheckResult {
+    CheckResult {
+        kind,
+        value,
+        limit: Some(limit),
+        margin: Some(1.0 - value.value / limit),
+        pass: value.value <= limit,
+        undecided: (value.value - limit).abs() <= value.err,
+    }
+}
+
+/// Golden-section search for the maximum of `f` on [a, b]: (argmax, max). The bracket shrinks
+/// to 1e-3 in ln d, far below the scan step, which is all the narrow-band guard needs.
+fn golden_max(
+    mut a: f64,
+    mut b: f64,
+    mut f: impl FnMut(f64) -> Result<f64, Error>,
+) -> Result<(f64, f64), Error> {
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    let mut c = b - r * (b - a);
+    let mut d = a + r * (b - a);
+    let (mut fc, mut fd) = (f(c)?, f(d)?);
+    while b - a > 1e-3 {
+        if fc > 1.0 {
+            return Ok((c, fc));
+        }
+        if fd > 1.0 {
+            return Ok((d, fd));
+        }
+        if fc >= fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - r * (b - a);
+            fc = f(c)?;
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + r * (b - a);
+            fd = f(d)?;
+        }
+    }
+    Ok(if fc >= fd { (c, fc) } else { (d, fd) })
+}
+
+/// Log-spaced thicknesses for `from:to:n` (n ≥ 2 includes both ends; n = 1 gives `from`).
+pub fn log_space(from: f64, to: f64, n: usize) -> Vec<f64> {
+    if n <= 1 {
+        return vec![from];
+    }
+    let (a, b) = (from.ln(), to.ln());
+    (0..n)
+        .map(|i| {
+            if i == 0 {
+                from
+            } else if i == n - 1 {
+                to
+            } else {
+                (a + (b - a) * i as f64 / (n - 1) as f64).exp()
+            }
+        })
+        .collect()
+}
+
+/// Tails of the interface stress distributions (notes.md, "Distributions and peak values").
+///
+/// erf and erfc come from `libm` (musl's, accurate to about 1 ulp): statrs' erf/erfc are off by
+/// about 1e-10 relative (erfc(0.5) measured against mpmath), too coarse for 1e-12 tails.
+/// statrs' erfc_inv is accurate to a few ulps and is used for τ_peak.
+pub mod tails {
+    use libm::{erf, erfc};
+    use statrs::function::erf::erfc_inv;
+    use std::f64::consts::{PI, SQRT_2};
+
+    /// P(|τ| > level) for a zero-mean Gaussian τ with rms `tau_rms`: erfc(level/(√2 τ_rms)).
+    pub fn tau_exceedance(tau_rms: f64, level: f64) -> f64 {
+        if tau_rms <= 0.0 {
+            return if level > 0.0 { 0.0 } else { 1.0 };
+        }
+        erfc(level / (SQRT_2 * tau_rms))
+    }
+
+    /// The level τ_peak with P(|τ| > τ_peak) = eps: √2 τ_rms erfc⁻¹(eps).
+    pub fn tau_peak(tau_rms: f64, eps: f64) -> f64 {
+        SQRT_2 * tau_rms * erfc_inv(eps)
+    }
+
+    /// erfc(x − a) − erfc(x + a) for a > 0 without cancellation: when the interval is short
+    /// on the scale of e^{−t²} (a·max(1, |x|) < 1/2), the integral of (2/√π)e^{−t²} over
+    /// [x − a, x + a] by 10-point Gauss–Legendre (error below 1e-16 relative there), else the
+    /// plain difference (which then loses at most a factor 1/(1 − e^{−2}) in relative terms).
+    fn erfc_diff(x: f64, a: f64) -> f64 {
+        if a * x.abs().max(1.0) < 0.5 {
+            let (nodes, weights) = crate::quad::gl10();
+            let sum: f64 = nodes
+                .iter()
+                .zip(weights)
+                .map(|(&t, &w)| {
+                    let u = x + a * t;
+                    w * (-u * u).exp()
+                })
+                .sum();
+            sum * a * 2.0 / PI.sqrt()
+        } else {
+            erfc(x - a) - erfc(x + a)
+        }
+    }
+
+    /// P(σ > level) for the interface normal stress: Persson's form centred at p0 with rms
+    /// width s (the density [N(σ; p0, s) − N(σ; −p0, s)] / erf(p0/(√2 s)) on σ ≥ 0).
+    pub fn normal_exceedance(p0: f64, s: f64, level: f64) -> f64 {
+        if level <= 0.0 {
+            return 1.0;
+        }
+        if s <= 0.0 {
+            return if level < p0 { 1.0 } else { 0.0 };
+        }
+        let a = p0 / (SQRT_2 * s);
+        erfc_diff(level / (SQRT_2 * s), a) / (2.0 * erf(a))
+    }
+
+    /// The density of the interface normal stress at `level` (≥ 0).
+    fn normal_density(p0: f64, s: f64, level: f64) -> f64 {
+        let a = p0 / (SQRT_2 * s);
+        let z = (level - p0) / s;
+        let gauss = (-0.5 * z * z).exp() / ((2.0 * PI).sqrt() * s);
+        gauss * -(-2.0 * level * p0 / (s * s)).exp_m1() / erf(a)
+    }
+
+    /// The level exceeded on a fraction `eps` of the interface: P(σ > level) = eps, by
+    /// Newton's method on ln P inside a bisection bracket [0, upper bound], to 1e-14 relative.
+    pub fn normal_peak(p0: f64, s: f64, eps: f64) -> f64 {
+        if s <= 0.0 {
+            return p0;
+        }
+        let a = p0 / (SQRT_2 * s);
+        // P(σ > L) ≤ erfc((L − p0)/(√2 s)) / (2 erf a): an upper bound for the root.
+        let t = (2.0 * eps * erf(a)).min(1.0);
+        let (mut lo, mut hi) = (0.0, p0 + SQRT_2 * s * erfc_inv(t).max(0.0) + 1e-12 * s);
+        let target = eps.ln();
+        let mut x = hi;
+        for _ in 0..100 {
+            let p = normal_exceedance(p0, s, x);
+            let g = p.ln() - target;
+            if g > 0.0 {
+                lo = x;
+            } else {
+                hi = x;
+            }
+            let slope = -normal_density(p0, s, x) / p;
+            let mut next = x - g / slope;
+            if !(next > lo && next < hi) || !next.is_finite() {
+                next = 0.5 * (lo + hi);
+            }
+            if (next - x).abs() <= 1e-15 * x.abs() || hi - lo <= 1e-15 * hi {
+                return next;
+            }
+            x = next;
+        }
+        x
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::*;
+
+        fn rel(a: f64, b: f64) -> f64 {
+            (a - b).abs() / b.abs()
+        }
+
+        // Reference values from mpmath at 50 digits (erfinv, erfc, findroot; the script is
+        // in the doc of each case: sqrt(2)*erfinv(1-eps), and the root of P(σ > L) = eps).
+        #[test]
+        fn tau_peak_matches_mpmath() {
+            for (eps, want) in [
+                (1e-6, 4.8916384756985903862),
+                (1e-3, 3.2905267314918947932),
+                (0.5, 0.6744897501960817432),
+                (1e-12, 7.130506848171324458),
+            ] {
+                assert!(rel(tau_peak(1.0, eps), want) < 1e-13, "{eps}");
+                assert!(rel(tau_exceedance(1.0, want), eps) < 1e-12, "{eps}");
+            }
+        }
+
+        #[test]
+        fn normal_tails_match_mpmath() {
+            for (p0, s, level, want) in [
+                (1e5, 2.22e5, 1e6, 0.000071363725175927777202),
+                (1e5, 1e11, 3e11, 0.011108996538258969991),
+                (1e5, 1e3, 1.05e5, 2.8665157187919391167e-7),
+            ] {
+                let got = normal_exceedance(p0, s, level);
+                assert!(rel(got, want) < 1e-13, "{p0} {s} {level}: {got} vs {want}");
+            }
+            for (p0, s, eps, want) in [
+                (1e5, 2.22e5, 1e-6, 1201435.4789189519625),
+                (1e5, 1e11, 1e-6, 525652176975.78080742),
+                (1e5, 1e3, 1e-6, 104753.42430882289896),
+                (1e5, 1e2, 0.3, 100052.44005127080408),
+                (1e5, 1e5, 0.9, 54437.864440880885955),
+            ] {
+                let got = normal_peak(p0, s, eps);
+                assert!(rel(got, want) < 1e-12, "{p0} {s} {eps}: {got} vs {want}");
+            }
+        }
+
+        #[test]
+        fn degenerate_widths() {
+            assert_eq!(normal_peak(1e5, 0.0, 1e-6), 1e5);
+            assert_eq!(tau_exceedance(0.0, 1.0), 0.0);
+            assert_eq!(normal_exceedance(1e5, 1e4, 0.0), 1.0);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn golden_section_finds_a_smooth_maximum() {
+        let (x, m) = golden_max(-2.0, 3.0, |x| Ok(0.9 - (x - 0.7) * (x - 0.7))).unwrap();
+        assert!((x - 0.7).abs() < 1e-3, "{x}");
+        assert!((m - 0.9).abs() < 1e-6, "{m}");
+        // Stops early at a point above 1.
+        let (x, m) = golden_max(-2.0, 3.0, |x| Ok(1.5 - (x - 0.7) * (x - 0.7))).unwrap();
+        assert!(m > 1.0 && (x - 0.7).abs() < 0.71);
+    }
+
+    #[test]
+    fn log_space_hits_both_ends() {
+        let v = log_space(1e-6, 1e-3, 4);
+        assert_eq!(v.len(), 4);
+        assert_eq!(v[0], 1e-6);
+        assert_eq!(v[3], 1e-3);
+        assert!((v[1] / 1e-5 - 1.0).abs() < 1e-14);
+        assert_eq!(log_space(2.0, 3.0, 1), vec![2.0]);
+    }
+
+    #[test]
+    fn check_names_round_trip() {
+        for c in CheckKind::ALL {
+            assert_eq!(CheckKind::from_name(c.name()), Some(c));
+        }
+        assert_eq!(CheckKind::from_name("bond"), None);
+    }
+
+    #[test]
+    fn upper_checks_margin_and_pass() {
+        let c = upper_check(CheckKind::BondShear, Estimate::exact(2.0), 8.0);
+        assert!(c.pass && (c.margin.unwrap() - 0.75).abs() < 1e-15 && !c.undecided);
+        let c = upper_check(
+            CheckKind::BondShear,
+            Estimate::new(8.1, 0.2, Termination::Converged),
+            8.0,
+        );
+        assert!(!c.pass && c.undecided && c.margin.unwrap() < 0.0);
+    }
+}
