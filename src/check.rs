@@ -301,9 +301,11 @@ impl Checker {
 
     /// Everything at one thickness: all engine quantities and the stress checks.
     pub fn evaluate(&self, thickness: f64) -> Result<Evaluation, Error> {
-        let contact = self
-            .engine
-            .evaluate(&self.stack(thickness)?, self.design.pressure, Request::all())?;
+        let contact = self.engine.evaluate(
+            &self.stack(thickness)?,
+            self.design.pressure,
+            Request::all(),
+        )?;
         self.assess(contact, true)
     }
 
@@ -314,7 +316,7 @@ impl Checker {
         let eps = d.criteria.epsilon;
         let p0 = d.pressure;
         let area = contact.area_fraction;
-        if !(area.value > 0.0) {
+        if area.value.is_nan() || area.value <= 0.0 {
             return Err(Error::Numerical {
                 what: "contact area",
                 detail: format!("A/A0 = {} at d = {} m", area.value, contact.thickness),
@@ -742,7 +744,7 @@ pub mod tails {
             }
             let slope = -normal_density(p0, s, x) / p;
             let mut next = x - g / slope;
-            if !(next > lo && next < hi) || !next.is_finite() {
+            if !(next > lo && next < hi && next.is_finite()) {
                 next = 0.5 * (lo + hi);
             }
             if (next - x).abs() <= 1e-15 * x.abs() || hi - lo <= 1e-15 * hi {

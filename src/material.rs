@@ -28,38 +28,20 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "aluminium-alloy.toml",
         include_str!("../materials/aluminium-alloy.toml"),
     ),
-    (
-        "brass.toml",
-        include_str!("../materials/brass.toml"),
-    ),
+    ("brass.toml", include_str!("../materials/brass.toml")),
     (
         "carbon-steel.toml",
         include_str!("../materials/carbon-steel.toml"),
     ),
-    (
-        "copper.toml",
-        include_str!("../materials/copper.toml"),
-    ),
+    ("copper.toml", include_str!("../materials/copper.toml")),
     (
         "cyanoacrylate.toml",
         include_str!("../materials/cyanoacrylate.toml"),
     ),
-    (
-        "epdm.toml",
-        include_str!("../materials/epdm.toml"),
-    ),
-    (
-        "epoxy.toml",
-        include_str!("../materials/epoxy.toml"),
-    ),
-    (
-        "fkm.toml",
-        include_str!("../materials/fkm.toml"),
-    ),
-    (
-        "glass.toml",
-        include_str!("../materials/glass.toml"),
-    ),
+    ("epdm.toml", include_str!("../materials/epdm.toml")),
+    ("epoxy.toml", include_str!("../materials/epoxy.toml")),
+    ("fkm.toml", include_str!("../materials/fkm.toml")),
+    ("glass.toml", include_str!("../materials/glass.toml")),
     (
         "hardened-steel.toml",
         include_str!("../materials/hardened-steel.toml"),
@@ -68,10 +50,7 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "natural-rubber.toml",
         include_str!("../materials/natural-rubber.toml"),
     ),
-    (
-        "nbr.toml",
-        include_str!("../materials/nbr.toml"),
-    ),
+    ("nbr.toml", include_str!("../materials/nbr.toml")),
     (
         "paper-rubber.toml",
         include_str!("../materials/paper-rubber.toml"),
@@ -84,10 +63,7 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "polyurethane.toml",
         include_str!("../materials/polyurethane.toml"),
     ),
-    (
-        "ptfe.toml",
-        include_str!("../materials/ptfe.toml"),
-    ),
+    ("ptfe.toml", include_str!("../materials/ptfe.toml")),
     (
         "rubber-vulcanised-to-brass.toml",
         include_str!("../materials/rubber-vulcanised-to-brass.toml"),
@@ -228,7 +204,11 @@ pub fn parse_entry(text: &str, path: &Path) -> Result<Entry, Error> {
             (&raw.poisson_ratio, "poisson_ratio"),
             (&raw.yield_strength, "yield_strength"),
         ] {
-            forbid(f, key, "not a property of a bond (expected shear_strength only)")?;
+            forbid(
+                f,
+                key,
+                "not a property of a bond (expected shear_strength only)",
+            )?;
         }
         let f = require(&raw.shear_strength, "shear_strength")?;
         let shear_strength = ctx.positive(&f, "shear_strength", Dim::Pressure)?;
@@ -247,7 +227,8 @@ pub fn parse_entry(text: &str, path: &Path) -> Result<Entry, Error> {
     let fn_ = require(&raw.poisson_ratio, "poisson_ratio")?;
     let e = ctx.positive(&fe, "youngs_modulus", Dim::Pressure)?;
     let nu = ctx.quantity(&fn_, "poisson_ratio", Dim::Dimensionless)?;
-    let elastic = Elastic::new(e, nu).map_err(|err| ctx.error(&fn_.origin, "poisson_ratio", err))?;
+    let elastic =
+        Elastic::new(e, nu).map_err(|err| ctx.error(&fn_.origin, "poisson_ratio", err))?;
     let yield_strength = match &raw.yield_strength {
         Some(f) => Some(ctx.positive(f, "yield_strength", Dim::Pressure)?),
         None => None,
@@ -381,7 +362,10 @@ fn unknown<'a>(name: &str, what: &str, names: impl Iterator<Item = &'a String>) 
     let (label, list): (&str, Vec<&str>) = if close.is_empty() {
         ("known", all.iter().map(|s| s.as_str()).collect())
     } else {
-        ("close names", close.iter().take(5).map(|(_, n)| n.as_str()).collect())
+        (
+            "close names",
+            close.iter().take(5).map(|(_, n)| n.as_str()).collect(),
+        )
     };
     format!("'{name}' {what} ({label}: {})", list.join(", "))
 }
@@ -441,7 +425,11 @@ mod tests {
         ] {
             let m = lib.material(m).unwrap();
             assert_eq!(m.kind, Kind::Film);
-            assert!(m.elastic.youngs > 1e5 && m.elastic.youngs < 1e10, "{}", m.name);
+            assert!(
+                m.elastic.youngs > 1e5 && m.elastic.youngs < 1e10,
+                "{}",
+                m.name
+            );
         }
         for m in [
             "carbon-steel",
@@ -455,7 +443,11 @@ mod tests {
         ] {
             let m = lib.material(m).unwrap();
             assert_eq!(m.kind, Kind::Substrate);
-            assert!(m.elastic.youngs > 5e10 && m.elastic.youngs < 3e11, "{}", m.name);
+            assert!(
+                m.elastic.youngs > 5e10 && m.elastic.youngs < 3e11,
+                "{}",
+                m.name
+            );
             let y = m.yield_strength.unwrap();
             assert!(y > 5e7 && y < 3e9, "{}", m.name);
         }
@@ -466,7 +458,11 @@ mod tests {
             "silicone-with-primer",
         ] {
             let b = lib.bond(b).unwrap();
-            assert!(b.shear_strength > 1e6 && b.shear_strength < 5e7, "{}", b.name);
+            assert!(
+                b.shear_strength > 1e6 && b.shear_strength < 5e7,
+                "{}",
+                b.name
+            );
         }
         // The paper's values exactly.
         let r = lib.material("paper-rubber").unwrap().elastic;
@@ -479,9 +475,15 @@ mod tests {
     #[test]
     fn lookups_are_forgiving_and_errors_list_close_names() {
         let lib = Library::builtin().unwrap();
-        assert_eq!(lib.material("Natural_Rubber").unwrap().name, "natural-rubber");
+        assert_eq!(
+            lib.material("Natural_Rubber").unwrap().name,
+            "natural-rubber"
+        );
         let e = lib.material("natural-rubbr").unwrap_err();
-        assert!(e.contains("'natural-rubbr'") && e.contains("natural-rubber"), "{e}");
+        assert!(
+            e.contains("'natural-rubbr'") && e.contains("natural-rubber"),
+            "{e}"
+        );
         let e = lib.material("epoxy").unwrap_err();
         assert!(e.contains("is a bond"), "{e}");
         let e = lib.bond("zzzzzzzzzzzzzzzzzzz").unwrap_err();
@@ -503,10 +505,18 @@ mod tests {
         let cases = [
             (ok.replace("1 MPa", "1 furlong"), 4, "unknown unit"),
             (ok.replace("0.5", "0.7"), 5, "Poisson"),
-            (ok.replace("schema_version = 1", "schema_version = 2"), 1, "schema_version"),
+            (
+                ok.replace("schema_version = 1", "schema_version = 2"),
+                1,
+                "schema_version",
+            ),
             (ok.replace("source", "sauce"), 6, "unknown field"),
             (ok.replace("\"film\"", "\"liquid\""), 3, "kind"),
-            (format!("{ok}shear_strength = \"1 MPa\"\n"), 7, "shear_strength"),
+            (
+                format!("{ok}shear_strength = \"1 MPa\"\n"),
+                7,
+                "shear_strength",
+            ),
         ];
         for (text, line, needle) in cases {
             let e = parse_entry(&text, p).unwrap_err().to_string();

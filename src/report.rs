@@ -143,7 +143,10 @@ fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
             mpa(scene.bond.shear_strength)
         ),
     ));
-    rows.push(("nominal pressure p0".into(), format!("{} MPa", mpa(scene.pressure))));
+    rows.push((
+        "nominal pressure p0".into(),
+        format!("{} MPa", mpa(scene.pressure)),
+    ));
     let c = &scene.criteria;
     rows.push((
         "criteria".into(),
@@ -202,14 +205,30 @@ pub fn human(scene: &Scene, outcome: &Outcome) -> String {
     };
     let plain = |x: f64| sig(x, 4);
     let mpa_unit = |x: f64| format!("{} MPa", mpa(x));
-    row("A/A0 (real contact area fraction)", Some(c.area_fraction), &plain);
+    row(
+        "A/A0 (real contact area fraction)",
+        Some(c.area_fraction),
+        &plain,
+    );
     row("E_eff/E_film", c.e_eff_over_e_film, &plain);
-    row("mean pressure in real contact p0·A0/A", Some(ev.mean_contact_pressure), &mpa_unit);
+    row(
+        "mean pressure in real contact p0·A0/A",
+        Some(ev.mean_contact_pressure),
+        &mpa_unit,
+    );
     row("sigma_rms top surface", c.sigma_rms_top, &mpa_unit);
     row("sigma_rms interface", c.sigma_rms_interface, &mpa_unit);
-    row("sigma_peak interface (exceedance epsilon)", ev.sigma_peak_interface, &mpa_unit);
+    row(
+        "sigma_peak interface (exceedance epsilon)",
+        ev.sigma_peak_interface,
+        &mpa_unit,
+    );
     row("tau_rms interface", c.tau_rms_interface, &mpa_unit);
-    row("tau_peak interface (exceedance epsilon)", ev.tau_peak, &mpa_unit);
+    row(
+        "tau_peak interface (exceedance epsilon)",
+        ev.tau_peak,
+        &mpa_unit,
+    );
     if let Some(p) = ev.bond_exceedance {
         t.add_row(vec![
             "P(|tau| > bond strength)".into(),
@@ -292,7 +311,11 @@ pub fn json(scene: &Scene, outcome: &Outcome) -> Value {
     m.insert("thickness_m".into(), json!(outcome.thickness));
     m.insert("pressure_pa".into(), json!(scene.pressure));
     put(&mut m, "area_fraction", Some(c.area_fraction));
-    put(&mut m, "mean_contact_pressure_pa", Some(ev.mean_contact_pressure));
+    put(
+        &mut m,
+        "mean_contact_pressure_pa",
+        Some(ev.mean_contact_pressure),
+    );
     put(&mut m, "sigma_rms_top_pa", c.sigma_rms_top);
     put(&mut m, "sigma_rms_interface_pa", c.sigma_rms_interface);
     put(&mut m, "tau_rms_interface_pa", c.tau_rms_interface);
@@ -352,13 +375,18 @@ pub fn csv(scene: &Scene, outcome: &Outcome) -> Result<String, Error> {
         what: "CSV output",
         detail: e.to_string(),
     };
-    w.write_record(["quantity", "value", "err", "unit"]).map_err(ser)?;
+    w.write_record(["quantity", "value", "err", "unit"])
+        .map_err(ser)?;
     let ev = &outcome.evaluation;
     let c = &ev.contact;
     let num = |x: Option<f64>| x.map(|x| format!("{x:e}")).unwrap_or_default();
     let rows: Vec<(&str, Option<Estimate>, &str)> = vec![
         ("area_fraction", Some(c.area_fraction), "1"),
-        ("mean_contact_pressure", Some(ev.mean_contact_pressure), "Pa"),
+        (
+            "mean_contact_pressure",
+            Some(ev.mean_contact_pressure),
+            "Pa",
+        ),
         ("sigma_rms_top", c.sigma_rms_top, "Pa"),
         ("sigma_rms_interface", c.sigma_rms_interface, "Pa"),
         ("tau_rms_interface", c.tau_rms_interface, "Pa"),
@@ -376,16 +404,15 @@ pub fn csv(scene: &Scene, outcome: &Outcome) -> Result<String, Error> {
     w.write_record(["pressure", &format!("{:e}", scene.pressure), "", "Pa"])
         .map_err(ser)?;
     for (k, e, unit) in rows {
-        w.write_record([
-            k,
-            &num(e.map(|e| e.value)),
-            &num(e.map(|e| e.err)),
-            unit,
-        ])
-        .map_err(ser)?;
+        w.write_record([k, &num(e.map(|e| e.value)), &num(e.map(|e| e.err)), unit])
+            .map_err(ser)?;
     }
     for ch in &outcome.checks {
-        let unit = if ch.kind == CheckKind::MinThickness { "m" } else { "Pa" };
+        let unit = if ch.kind == CheckKind::MinThickness {
+            "m"
+        } else {
+            "Pa"
+        };
         w.write_record([
             &format!("check:{}", ch.kind.name()),
             &format!("{:e}", ch.value.value),
@@ -446,7 +473,9 @@ const SWEEP: &[(&str, &str, Getter)] = &[
     ("tau_rms [MPa]", "tau_rms_interface_pa", |e| {
         e.contact.tau_rms_interface.map(|x| x.value)
     }),
-    ("tau_peak [MPa]", "tau_peak_pa", |e| e.tau_peak.map(|x| x.value)),
+    ("tau_peak [MPa]", "tau_peak_pa", |e| {
+        e.tau_peak.map(|x| x.value)
+    }),
 ];
 
 /// The thickness sweep in the chosen format.
@@ -470,7 +499,9 @@ pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
                 cells.push(
                     ev.checks
                         .iter()
-                        .map(|c| format!("{} {}", c.kind.name(), if c.pass { "PASS" } else { "FAIL" }))
+                        .map(|c| {
+                            format!("{} {}", c.kind.name(), if c.pass { "PASS" } else { "FAIL" })
+                        })
                         .collect::<Vec<_>>()
                         .join(", "),
                 );

@@ -366,7 +366,9 @@ impl Scene {
             })?),
             None => None,
         };
-        let src = file.zip(text.as_deref()).map(|(path, text)| Source { path, text });
+        let src = file
+            .zip(text.as_deref())
+            .map(|(path, text)| Source { path, text });
         let mut raw: RawScene = match &src {
             Some(s) => s.parse()?,
             None => RawScene::default(),
@@ -399,10 +401,7 @@ pub fn resolve(
     for group in EXCLUSIVE {
         let given: Vec<(&str, &Field)> = group
             .iter()
-            .filter_map(|alt| {
-                alt.iter()
-                    .find_map(|k| raw.get(k).map(|f| (*k, f)))
-            })
+            .filter_map(|alt| alt.iter().find_map(|k| raw.get(k).map(|f| (*k, f))))
             .collect();
         if given.len() > 1 {
             let (k1, _) = given[0];
@@ -472,7 +471,11 @@ pub fn resolve(
     if let Some(f) = &raw.criteria.epsilon {
         let e = ctx.quantity(f, "criteria.epsilon", Dim::Dimensionless)?;
         if !(e > 0.0 && e < 1.0) {
-            return Err(ctx.error(&f.origin, "criteria.epsilon", format!("{e} (expected 0 < epsilon < 1)")));
+            return Err(ctx.error(
+                &f.origin,
+                "criteria.epsilon",
+                format!("{e} (expected 0 < epsilon < 1)"),
+            ));
         }
         criteria.epsilon = e;
     }
@@ -491,7 +494,11 @@ pub fn resolve(
         let mut checks = Checks::none();
         let names = ctx.list(f, "criteria.checks")?;
         if names.is_empty() {
-            return Err(ctx.error(&f.origin, "criteria.checks", "empty (expected at least one check)"));
+            return Err(ctx.error(
+                &f.origin,
+                "criteria.checks",
+                "empty (expected at least one check)",
+            ));
         }
         for n in names {
             let c = CheckKind::from_name(&n).ok_or_else(|| {
@@ -517,8 +524,12 @@ pub fn resolve(
     let mut settings = Settings::default();
     if let Some(f) = &raw.numerics.rtol {
         let r = ctx.quantity(f, "numerics.rtol", Dim::Dimensionless)?;
-        if !(r >= 1e-13 && r <= 1e-2) {
-            return Err(ctx.error(&f.origin, "numerics.rtol", format!("{r} (expected 1e-13 <= rtol <= 1e-2)")));
+        if !(1e-13..=1e-2).contains(&r) {
+            return Err(ctx.error(
+                &f.origin,
+                "numerics.rtol",
+                format!("{r} (expected 1e-13 <= rtol <= 1e-2)"),
+            ));
         }
         settings.rtol = r;
     }
@@ -559,7 +570,11 @@ fn resolve_roughness(r: &RawRoughness, ctx: Ctx<'_>) -> Result<Roughness, Error>
     if let (Some(a), Some(b), Some(f)) = (q_min, q_max, &r.q_max)
         && a >= b
     {
-        return Err(ctx.error(&f.origin, "roughness.q_max", format!("{b} 1/m is not above q_min = {a} 1/m")));
+        return Err(ctx.error(
+            &f.origin,
+            "roughness.q_max",
+            format!("{b} 1/m is not above q_min = {a} 1/m"),
+        ));
     }
     let source = if let Some(f) = &r.psd {
         RoughnessSource::Measured {
@@ -570,12 +585,20 @@ fn resolve_roughness(r: &RawRoughness, ctx: Ctx<'_>) -> Result<Roughness, Error>
         let need = |g: &Option<Field>, key: &str, dim: Dim| -> Result<f64, Error> {
             match g {
                 Some(g) => ctx.positive(g, key, dim),
-                None => Err(ctx.error(&f.origin, key, format!("missing (model '{model}' needs it)"))),
+                None => Err(ctx.error(
+                    &f.origin,
+                    key,
+                    format!("missing (model '{model}' needs it)"),
+                )),
             }
         };
         let unused = |g: &Option<Field>, key: &str| -> Result<(), Error> {
             match g {
-                Some(g) => Err(ctx.error(&g.origin, key, format!("not a parameter of model '{model}'"))),
+                Some(g) => Err(ctx.error(
+                    &g.origin,
+                    key,
+                    format!("not a parameter of model '{model}'"),
+                )),
                 None => Ok(()),
             }
         };
@@ -655,7 +678,8 @@ fn resolve_material(
         (None, Some(fe), Some(fnu)) => {
             let e = ctx.positive(fe, &key("youngs_modulus"), Dim::Pressure)?;
             let nu = ctx.quantity(fnu, &key("poisson_ratio"), Dim::Dimensionless)?;
-            let elastic = Elastic::new(e, nu).map_err(|err| ctx.error(&fnu.origin, &key("poisson_ratio"), err))?;
+            let elastic = Elastic::new(e, nu)
+                .map_err(|err| ctx.error(&fnu.origin, &key("poisson_ratio"), err))?;
             Material {
                 name: "custom".into(),
                 kind,

@@ -112,30 +112,25 @@ impl Ctx<'_> {
     pub fn error(&self, origin: &Origin, key: &str, msg: impl std::fmt::Display) -> Error {
         match (origin, self.file) {
             (Origin::File(span), Some(src)) => src.error_at(span.start, format!("{key}: {msg}")),
-            _ => {
-                let flag = match origin {
-                    Origin::Flag(f) => *f,
-                    Origin::File(_) => "scene",
-                };
-                Error::Invalid {
-                    what: flag,
-                    got: format!("{key}: {msg}"),
-                    expected: "a valid value (see --help)",
-                }
-            }
+            (Origin::Flag(flag), _) => Error::Value {
+                origin: flag.to_string(),
+                msg: format!("{key}: {msg}"),
+            },
+            (Origin::File(_), None) => Error::Value {
+                origin: "scene".into(),
+                msg: format!("{key}: {msg}"),
+            },
         }
     }
 
     /// The error for a required key that is missing.
     pub fn missing(&self, key: &str, hint: &str) -> Error {
-        let place = match self.file {
-            Some(src) => format!(" in {}", src.path.display()),
-            None => String::new(),
-        };
-        Error::Invalid {
-            what: "scene",
-            got: format!("{key} is missing{place}; {hint}"),
-            expected: "a complete scene (see coatcheck check --help)",
+        Error::Value {
+            origin: match self.file {
+                Some(src) => src.path.display().to_string(),
+                None => "scene".into(),
+            },
+            msg: format!("{key} is missing; {hint}"),
         }
     }
 
@@ -163,7 +158,7 @@ impl Ctx<'_> {
     pub fn positive(&self, f: &Field, key: &str, dim: Dim) -> Result<f64, Error> {
         let v = self.quantity(f, key, dim)?;
         if v <= 0.0 {
-            return Err(self.error(&f.origin, key, format!("{v} (expected a value > 0)")));
+            return Err(self.error(&f.origin, key, format!("{v:e} (expected a value > 0)")));
         }
         Ok(v)
     }
@@ -194,11 +189,9 @@ impl Ctx<'_> {
     pub fn path(&self, f: &Field, key: &str) -> Result<PathBuf, Error> {
         let t = PathBuf::from(self.text(f, key)?);
         Ok(match (&f.origin, self.file) {
-            (Origin::File(_), Some(src)) if t.is_relative() => src
-                .path
-                .parent()
-                .map(|dir| dir.join(&t))
-                .unwrap_or(t),
+            (Origin::File(_), Some(src)) if t.is_relative() => {
+                src.path.parent().map(|dir| dir.join(&t)).unwrap_or(t)
+            }
             _ => t,
         })
     }
@@ -223,7 +216,10 @@ mod tests {
     fn quantities_accept_numbers_and_units() {
         let ctx = Ctx { file: None };
         let f = Field::flag("--pressure", "0.1 MPa");
-        assert_eq!(ctx.quantity(&f, "load.pressure", Dim::Pressure).unwrap(), 1e5);
+        assert_eq!(
+            ctx.quantity(&f, "load.pressure", Dim::Pressure).unwrap(),
+            1e5
+        );
         let n = Field {
             raw: Raw::Number(2e11),
             origin: Origin::Flag("--x"),
@@ -234,7 +230,10 @@ mod tests {
             .positive(&bad, "load.pressure", Dim::Pressure)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("--pressure") && e.contains("load.pressure"), "{e}");
+        assert!(
+            e.contains("--pressure") && e.contains("load.pressure"),
+            "{e}"
+        );
         let inf = Field::flag("--pressure", "inf");
         assert!(ctx.quantity(&inf, "load.pressure", Dim::Pressure).is_err());
     }

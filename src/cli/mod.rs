@@ -1,6 +1,9 @@
 //! Command-line definitions and dispatch. Errors are mapped to messages and exit codes here only:
 //! 0 all checks pass, 1 a check fails, 2 bad input or a numerical failure.
 
+mod check;
+mod materials;
+
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
@@ -15,9 +18,24 @@ struct Cli {
 }
 
 #[derive(Subcommand)]
-enum Command {}
+enum Command {
+    /// Judge a coating design: contact area, interface stresses, pass/fail checks, d_min.
+    Check(check::CheckArgs),
+    /// List the materials library (bundled, plus --materials DIR).
+    Materials(materials::MaterialsArgs),
+}
 
 pub fn run() -> i32 {
     let cli = Cli::parse();
-    match cli.command {}
+    let result = match cli.command {
+        Command::Check(args) => check::run(args),
+        Command::Materials(args) => materials::run(args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("coatcheck: {e}");
+            2
+        }
+    }
 }

@@ -45,7 +45,10 @@ pub fn read_spectrum(path: &Path, _opts: &ReadOptions) -> Result<(Tabulated, Vec
         }
         seen_data_or_header = true;
         if fields.len() < 2 {
-            return Err(err(n, format!("expected two columns (q, C), found {}", fields.len())));
+            return Err(err(
+                n,
+                format!("expected two columns (q, C), found {}", fields.len()),
+            ));
         }
         let (Some(qi), Some(ci)) = (nums[0], nums[1]) else {
             return Err(err(n, format!("expected two numbers (q, C), found '{t}'")));
@@ -58,17 +61,26 @@ pub fn read_spectrum(path: &Path, _opts: &ReadOptions) -> Result<(Tabulated, Vec
         }
         if let Some(&prev) = q.last() {
             if qi == prev {
-                return Err(err(n, format!("duplicate q = {qi}: expected strictly increasing q")));
+                return Err(err(
+                    n,
+                    format!("duplicate q = {qi}: expected strictly increasing q"),
+                ));
             }
             if qi < prev {
-                return Err(err(n, format!("q = {qi} after {prev}: expected strictly increasing q")));
+                return Err(err(
+                    n,
+                    format!("q = {qi} after {prev}: expected strictly increasing q"),
+                ));
             }
         }
         q.push(qi);
         c.push(ci);
     }
     if q.len() < 2 {
-        return Err(err(last_line, format!("{} data point(s): expected at least 2", q.len())));
+        return Err(err(
+            last_line,
+            format!("{} data point(s): expected at least 2", q.len()),
+        ));
     }
     let t = Tabulated::new(q, c).map_err(|e| err(last_line, e.to_string()))?;
     Ok((t, Vec::new()))
