@@ -408,6 +408,14 @@ mod tests {
             let e = parse_entry(text, Path::new(file)).unwrap();
             assert_eq!(format!("{}.toml", e.name()), *file);
         }
+        let index = std::fs::read_to_string(dir.join("README.md")).unwrap();
+        for (file, _) in BUILTIN {
+            let name = file.trim_end_matches(".toml");
+            assert!(
+                index.contains(&format!("| `{name}` |")),
+                "{name} not in materials/README.md"
+            );
+        }
     }
 
     #[test]

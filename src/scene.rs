@@ -707,3 +707,163 @@ fn resolve_material(
     }
     Ok(m)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SCENE: &str = "\
+[roughness]
+model = \"self-affine\"
+hurst = 0.8
+q0 = \"0.1 1/um\"
+q1 = \"1e8 1/m\"
+roll_off = \"2e5 1/m\"
+rms_slope = 1
+[film]
+material = \"paper-rubber\"
+thickness = 1e-5
+[substrate]
+material = \"carbon-steel\"
+yield_strength = \"400 MPa\"
+[bond]
+shear_strength = \"12 MPa\"
+[load]
+pressure = \"0.1 MPa\"
+[criteria]
+checks = [\"bond-shear\", \"min-thickness\"]
+safety_factor = 1.5
+";
+
+    fn load(text: &str, flags: &[(&str, &str)]) -> Result<Scene, Error> {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("scene.toml");
+        std::fs::write(&path, text).unwrap();
+        let flags: Vec<(&str, String)> = flags.iter().map(|(k, v)| (*k, v.to_string())).collect();
+        Scene::load(Some(&path), &flags, &Library::builtin().unwrap())
+    }
+
+    #[test]
+    fn a_file_scene_in_si() {
+        let s = load(SCENE, &[]).unwrap();
+        assert_eq!(
+            s.roughness.source,
+            RoughnessSource::SelfAffine {
+                hurst: 0.8,
+                q0: 1e5,
+                q1: 1e8,
+                roll_off: Some(2e5)
+            }
+        );
+        assert_eq!(s.roughness.scale, Some(Scale::RmsSlope(1.0)));
+        assert_eq!(s.thickness, Some(1e-5));
+        assert_eq!(s.film.elastic.youngs, 1e6);
+        assert_eq!(s.substrate.name, "carbon-steel");
+        assert_eq!(s.substrate.yield_strength, Some(4e8));
+        assert_eq!(s.bond.shear_strength, 1.2e7);
+        assert_eq!(s.pressure, 1e5);
+        let c = s.criteria;
+        assert!(c.checks.bond_shear && !c.checks.substrate_yield && c.checks.min_thickness);
+        assert_eq!((c.epsilon, c.safety_factor), (1e-6, 1.5));
+        let d = s.design();
+        assert_eq!(d.bond_strength, 1.2e7);
+    }
+
+    #[test]
+    fn flags_override_the_file() {
+        let s = load(
+            SCENE,
+            &[
+                ("film.thickness", "50um"),
+                ("load.pressure", "2 bar"),
+                ("criteria.checks", "substrate-yield"),
+                ("bond.material", "epoxy"),
+            ],
+        )
+        .unwrap();
+        assert!((s.thickness.unwrap() / 50e-6 - 1.0).abs() < 1e-15);
+        assert_eq!(s.pressure, 2e5);
+        assert_eq!(s.bond.name, "epoxy");
+        let c = s.criteria.checks;
+        assert!(!c.bond_shear && c.substrate_yield && !c.min_thickness);
+        // A flag for the other alternative replaces the file's model (the path is taken as
+        // given, relative to the working directory).
+        let s = load(SCENE, &[("roughness.psd", "data/s.csv")]).unwrap();
+        assert_eq!(
+            s.roughness.source,
+            RoughnessSource::Measured {
+                path: PathBuf::from("data/s.csv")
+            }
+        );
+        // Explicit film moduli from flags replace the file's material.
+        let s = load(
+            SCENE,
+            &[
+                ("film.youngs_modulus", "3MPa"),
+                ("film.poisson_ratio", "0.49"),
+            ],
+        )
+        .unwrap();
+        assert_eq!((s.film.elastic.youngs, s.film.elastic.poisson), (3e6, 0.49));
+    }
+
+    #[test]
+    fn psd_paths_are_relative_to_the_scene_file() {
+        let text = SCENE
+            .replace("model = \"self-affine\"\n", "psd = \"s.csv\"\n")
+            .replace("hurst = 0.8\n", "")
+            .replace("q0 = \"0.1 1/um\"\n", "")
+            .replace("q1 = \"1e8 1/m\"\n", "")
+            .replace("roll_off = \"2e5 1/m\"\n", "");
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("scene.toml");
+        std::fs::write(&path, &text).unwrap();
+        let s = Scene::load(Some(&path), &[], &Library::builtin().unwrap()).unwrap();
+        assert_eq!(
+            s.roughness.source,
+            RoughnessSource::Measured {
+                path: dir.path().join("s.csv")
+            }
+        );
+    }
+
+    #[test]
+    fn substrate_yield_needs_a_yield_strength() {
+        let text = SCENE
+            .replace(
+                "material = \"carbon-steel\"\n",
+                "youngs_modulus = \"200 GPa\"\npoisson_ratio = 0.3\n",
+            )
+            .replace("yield_strength = \"400 MPa\"\n", "");
+        assert!(load(&text, &[]).is_ok(), "bond-shear only needs no yield");
+        let e = load(&text, &[("criteria.checks", "substrate-yield")])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("substrate.yield_strength"), "{e}");
+    }
+
+    #[test]
+    fn a_model_needs_its_amplitude_and_parameters() {
+        let e = load(&SCENE.replace("rms_slope = 1\n", ""), &[])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(":2:") && e.contains("rms_slope or rms_height"),
+            "{e}"
+        );
+        let e = load(&SCENE.replace("hurst = 0.8\n", ""), &[])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("roughness.hurst") && e.contains("missing"),
+            "{e}"
+        );
+        let e = load(&SCENE, &[("roughness.model", "fractal")])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("--model") && e.contains("unknown model 'fractal'"),
+            "{e}"
+        );
+    }
+}
