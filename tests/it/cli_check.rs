@@ -2,7 +2,7 @@
 //! the bundled examples, and every bad-input case of issue 3 (one-line error naming file, line
 //! and field; exit code 2; no output file written).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Command, Output};
 
 const BIN: &str = env!("CARGO_BIN_EXE_coatcheck");
@@ -304,4 +304,166 @@ pub fn example(name: &str) -> String {
         .join(name)
         .to_string_lossy()
         .into_owned()
+}
+
+fn json_of(o: &Output) -> serde_json::Value {
+    serde_json::from_slice(&o.stdout).expect("stdout is one JSON object")
+}
+
+#[test]
+fn examples_give_their_verdicts_and_exit_codes() {
+    for (name, code) in [
+        ("paper-rubber-on-steel.toml", 0),
+        ("measured-rolloff.toml", 0),
+        ("waviness-thin-film.toml", 1),
+    ] {
+        let o = run(&["check", &example(name)]);
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(o.status.code(), Some(code), "{name}: {text}{}", stderr(&o));
+        let verdict = if code == 0 {
+            "verdict: PASS"
+        } else {
+            "verdict: FAIL"
+        };
+        assert!(text.contains(verdict), "{name}: {text}");
+        for needle in [
+            "A/A0",
+            "tau_rms interface",
+            "bond-shear",
+            "substrate-yield",
+            "min-thickness",
+        ] {
+            assert!(text.contains(needle), "{name}: {needle}");
+        }
+    }
+}
+
+#[test]
+fn json_has_the_required_keys_with_error_siblings() {
+    let o = run(&[
+        "check",
+        &example("paper-rubber-on-steel.toml"),
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v = json_of(&o);
+    assert_eq!(v["verdict"], "pass");
+    for key in [
+        "area_fraction",
+        "mean_contact_pressure_pa",
+        "sigma_rms_top_pa",
+        "sigma_rms_interface_pa",
+        "tau_rms_interface_pa",
+        "tau_peak_pa",
+        "sigma_peak_interface_pa",
+        "e_eff_over_e_film",
+        "min_thickness_m",
+    ] {
+        let x = v[key].as_f64().unwrap_or_else(|| panic!("{key}"));
+        let err = v[format!("{key}_err")]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{key}_err"));
+        assert!(
+            x.is_finite() && err >= 0.0 && err < 0.01 * x.abs(),
+            "{key}: {x} ± {err}"
+        );
+    }
+    let a = v["area_fraction"].as_f64().unwrap();
+    assert!((a - 0.0927).abs() < 5e-5, "{a}");
+    assert!(v["governing_check"].is_string());
+    let checks = v["checks"].as_array().unwrap();
+    let names: Vec<&str> = checks.iter().map(|c| c["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["bond-shear", "substrate-yield", "min-thickness"]);
+    for c in checks {
+        assert!(
+            c["value"].is_f64() && c["limit"].is_f64() && c["pass"].is_boolean(),
+            "{c}"
+        );
+    }
+}
+
+#[test]
+fn only_the_requested_checks_run() {
+    let o = run(&[
+        "check",
+        &example("paper-rubber-on-steel.toml"),
+        "--format",
+        "json",
+        "--checks",
+        "bond-shear",
+    ]);
+    let v = json_of(&o);
+    let checks = v["checks"].as_array().unwrap();
+    assert_eq!(checks.len(), 1);
+    assert_eq!(checks[0]["name"], "bond-shear");
+    assert!(v["min_thickness_m"].is_null());
+}
+
+#[test]
+fn no_passing_thickness_is_null_and_exit_1() {
+    // A 0.5 MPa "yield strength" is below the bulk film's mean contact pressure (≈ 0.65 MPa).
+    let o = run(&[
+        "check",
+        &example("paper-rubber-on-steel.toml"),
+        "--format",
+        "json",
+        "--yield-strength",
+        "0.5 MPa",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let v = json_of(&o);
+    assert_eq!(v["verdict"], "fail");
+    assert!(v["min_thickness_m"].is_null());
+    let o = run(&[
+        "check",
+        &example("paper-rubber-on-steel.toml"),
+        "--yield-strength",
+        "0.5MPa",
+    ]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("no thickness passes"));
+}
+
+#[test]
+fn output_file_csv_and_sweep() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r.csv");
+    let o = run(&[
+        "check",
+        &example("paper-rubber-on-steel.toml"),
+        "--format",
+        "csv",
+        "--output",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(o.stdout.is_empty());
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.starts_with("quantity,value,err,unit\n"), "{text}");
+    assert!(text.contains("\nverdict,pass,"), "{text}");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        1,
+        "no temporaries left"
+    );
+
+    let o = run(&[
+        "check",
+        &example("paper-rubber-on-steel.toml"),
+        "--sweep-thickness",
+        "0.1um:1mm:9",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 10);
+    assert!(lines[0].starts_with("thickness_m,area_fraction,"));
+    let d: Vec<f64> = lines[1..]
+        .iter()
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect();
+    assert!((d[0] / 1e-7 - 1.0).abs() < 1e-12 && (d[8] / 1e-3 - 1.0).abs() < 1e-12);
+    assert!((d[4] / 1e-5 - 1.0).abs() < 1e-12, "log-spaced: {d:?}");
 }
