@@ -453,7 +453,9 @@ impl Checker {
                 if b.1 > a.1 && b.1 >= c.1 && b.1 > PEAK_GUARD {
                     let (xm, um) = golden_max(c.0, a.0, |x| util(x.exp()).map(|r| r.0))?;
                     if um > 1.0 {
-                        failing = Some((xm, a.0));
+                        // The nearest passing sample above the failing point brackets the
+                        // band's upper edge.
+                        failing = Some((xm, if xm < b.0 { b.0 } else { a.0 }));
                         break;
                     }
                 }
