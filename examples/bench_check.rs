@@ -89,7 +89,10 @@ fn main() {
     if Path::new(&bin).exists() {
         for (label, extra) in [
             ("whole command, full check + d_min", vec![]),
-            ("whole command, --checks bond-shear", vec!["--checks", "bond-shear"]),
+            (
+                "whole command, --checks bond-shear",
+                vec!["--checks", "bond-shear"],
+            ),
         ] {
             rows.push((
                 label.into(),
@@ -107,7 +110,9 @@ fn main() {
     } else {
         println!("(no target/release/coatcheck: run `cargo build --release` to time the command)");
     }
-    println!("1000-point measured PSD, {reps} repetitions (median); d_min used {evals} engine evaluations");
+    println!(
+        "1000-point measured PSD, {reps} repetitions (median); d_min used {evals} engine evaluations"
+    );
     println!("{:<64} {:>12}", "what", "median");
     for (label, t) in rows {
         println!("{label:<64} {:>9.3} ms", t.as_secs_f64() * 1e3);

@@ -405,100 +405,7 @@ impl Checker {
     /// The smallest thickness above which every enabled stress check passes (module docs).
     pub fn min_thickness(&self) -> Result<MinThickness, Error> {
         let (lo, hi) = self.scan_range();
-        let mut evaluations = 0usize;
-        let mut util = |d: f64| {
-            evaluations += 1;
-            self.utilisation(d)
-        };
-        let (u_hi, kind_hi) = util(hi)?;
-        let none_pass = |kind, evaluations| MinThickness {
-            thickness: None,
-            governing: kind,
-            floor: lo,
-            bulk: hi,
-            all_pass_to_floor: false,
-            evaluations,
-        };
-        if kind_hi.is_none() {
-            // No stress check enabled: every thickness passes.
-            return Ok(MinThickness {
-                thickness: Some(Estimate::exact(lo)),
-                governing: None,
-                floor: lo,
-                bulk: hi,
-                all_pass_to_floor: true,
-                evaluations,
-            });
-        }
-        if u_hi > 1.0 {
-            return Ok(none_pass(kind_hi, evaluations));
-        }
-        let step = (10f64).ln() / POINTS_PER_DECADE;
-        let n = ((hi / lo).ln() / step).ceil().max(1.0) as usize;
-        let h = (hi / lo).ln() / n as f64;
-        // Samples from the top: (ln d, utilisation).
-        let mut samples: Vec<(f64, f64)> = vec![(hi.ln(), u_hi)];
-        let mut failing: Option<(f64, f64)> = None; // (ln d failing, ln d passing above it)
-        for k in 1..=n {
-            let x = hi.ln() - k as f64 * h;
-            let (u, _) = util(x.exp())?;
-            samples.push((x, u));
-            if u > 1.0 {
-                failing = Some((x, samples[k - 1].0));
-                break;
-            }
-            // A sampled local maximum: look between the neighbours for a narrow failing band.
-            if k >= 2 {
-                let (a, b, c) = (samples[k - 2], samples[k - 1], samples[k]);
-                if b.1 > a.1 && b.1 >= c.1 && b.1 > PEAK_GUARD {
-                    let (xm, um) = golden_max(c.0, a.0, |x| util(x.exp()).map(|r| r.0))?;
-                    if um > 1.0 {
-                        // The nearest passing sample above the failing point brackets the
-                        // band's upper edge.
-                        failing = Some((xm, if xm < b.0 { b.0 } else { a.0 }));
-                        break;
-                    }
-                }
-            }
-        }
-        let Some((mut x_fail, mut x_pass)) = failing else {
-            return Ok(MinThickness {
-                thickness: Some(Estimate::exact(lo)),
-                governing: None,
-                floor: lo,
-                bulk: hi,
-                all_pass_to_floor: true,
-                evaluations,
-            });
-        };
-        let mut governing = None;
-        while x_pass - x_fail > D_MIN_RTOL.ln_1p() {
-            let mid = 0.5 * (x_pass + x_fail);
-            let (u, kind) = util(mid.exp())?;
-            if u > 1.0 {
-                x_fail = mid;
-                governing = kind;
-            } else {
-                x_pass = mid;
-            }
-        }
-        if governing.is_none() {
-            governing = util(x_fail.exp())?.1;
-        }
-        let (d_fail, d_pass) = (x_fail.exp(), x_pass.exp());
-        let mid = (0.5 * (x_fail + x_pass)).exp();
-        Ok(MinThickness {
-            thickness: Some(Estimate::new(
-                mid,
-                0.5 * (d_pass - d_fail),
-                Termination::Converged,
-            )),
-            governing,
-            floor: lo,
-            bulk: hi,
-            all_pass_to_floor: false,
-            evaluations,
-        })
+        search_min_thickness(lo, hi, |d| self.utilisation(d))
     }
 
     /// The full check at the design's thickness: all quantities, the enabled checks, d_min.
@@ -593,6 +500,82 @@ impl Checker {
     }
 }
 
+/// The minimum-thickness search on [lo, hi] (module docs, steps 1–5) for a utilisation
+/// function `util(d) = (max over checks of value/limit, the check attaining it)`; a thickness
+/// fails when its utilisation exceeds 1.
+pub fn search_min_thickness(
+    lo: f64,
+    hi: f64,
+    mut util: impl FnMut(f64) -> Result<(f64, Option<CheckKind>), Error>,
+) -> Result<MinThickness, Error> {
+    let mut evaluations = 0usize;
+    let mut util = |x: f64| {
+        evaluations += 1;
+        util(x.exp())
+    };
+    let result = |thickness, governing, all_pass_to_floor, evaluations| MinThickness {
+        thickness,
+        governing,
+        floor: lo,
+        bulk: hi,
+        all_pass_to_floor,
+        evaluations,
+    };
+    let (u_hi, kind_hi) = util(hi.ln())?;
+    if kind_hi.is_none() {
+        // No stress check enabled: every thickness passes.
+        return Ok(result(Some(Estimate::exact(lo)), None, true, 1));
+    }
+    if u_hi > 1.0 {
+        return Ok(result(None, kind_hi, false, 1));
+    }
+    let n = ((hi / lo).log10() * POINTS_PER_DECADE).ceil().max(1.0) as usize;
+    let h = (hi / lo).ln() / n as f64;
+    // Samples from the top: (ln d, utilisation).
+    let mut samples: Vec<(f64, f64)> = vec![(hi.ln(), u_hi)];
+    // (ln d failing, ln d passing above it, the failing check)
+    let mut failing: Option<(f64, f64, Option<CheckKind>)> = None;
+    for k in 1..=n {
+        let x = hi.ln() - k as f64 * h;
+        let (u, kind) = util(x)?;
+        samples.push((x, u));
+        if u > 1.0 {
+            failing = Some((x, samples[k - 1].0, kind));
+            break;
+        }
+        // A sampled local maximum: look between the neighbours for a narrow failing band.
+        if k >= 2 {
+            let (a, b, c) = (samples[k - 2], samples[k - 1], samples[k]);
+            if b.1 > a.1 && b.1 >= c.1 && b.1 > PEAK_GUARD {
+                let (xm, um, kind) = golden_max(c.0, a.0, &mut util)?;
+                if um > 1.0 {
+                    // The nearest passing sample above the failing point brackets the
+                    // band's upper edge.
+                    failing = Some((xm, if xm < b.0 { b.0 } else { a.0 }, kind));
+                    break;
+                }
+            }
+        }
+    }
+    let Some((mut x_fail, mut x_pass, mut governing)) = failing else {
+        return Ok(result(Some(Estimate::exact(lo)), None, true, evaluations));
+    };
+    while x_pass - x_fail > D_MIN_RTOL.ln_1p() {
+        let mid = 0.5 * (x_pass + x_fail);
+        let (u, kind) = util(mid)?;
+        if u > 1.0 {
+            x_fail = mid;
+            governing = kind;
+        } else {
+            x_pass = mid;
+        }
+    }
+    let (d_fail, d_pass) = (x_fail.exp(), x_pass.exp());
+    let mid = (0.5 * (x_fail + x_pass)).exp();
+    let d_min = Estimate::new(mid, 0.5 * (d_pass - d_fail), Termination::Converged);
+    Ok(result(Some(d_min), governing, false, evaluations))
+}
+
 /// A stress check against an upper limit.
 fn upper_check(kind: CheckKind, value: Estimate, limit: f64) -> CheckResult {
     CheckResult {
@@ -605,25 +588,31 @@ fn upper_check(kind: CheckKind, value: Estimate, limit: f64) -> CheckResult {
     }
 }
 
-/// Golden-section search for the maximum of `f` on [a, b]: (argmax, max). The bracket shrinks
-/// to 1e-3 in ln d, far below the scan step, which is all the narrow-band guard needs.
+/// Golden-section search for the maximum of `f` on [a, b]: (argmax, max, its check). Stops
+/// early at a point above 1 (a failure is all the narrow-band guard needs), else when the
+/// bracket is 1e-3 wide in ln d, far below the scan step.
+type Util<'a> = dyn FnMut(f64) -> Result<(f64, Option<CheckKind>), Error> + 'a;
+
 fn golden_max(
     mut a: f64,
     mut b: f64,
-    mut f: impl FnMut(f64) -> Result<f64, Error>,
-) -> Result<(f64, f64), Error> {
+    f: &mut Util<'_>,
+) -> Result<(f64, f64, Option<CheckKind>), Error> {
     let r = 0.5 * (5f64.sqrt() - 1.0);
     let mut c = b - r * (b - a);
     let mut d = a + r * (b - a);
     let (mut fc, mut fd) = (f(c)?, f(d)?);
-    while b - a > 1e-3 {
-        if fc > 1.0 {
-            return Ok((c, fc));
+    loop {
+        if fc.0 > 1.0 {
+            return Ok((c, fc.0, fc.1));
         }
-        if fd > 1.0 {
-            return Ok((d, fd));
+        if fd.0 > 1.0 {
+            return Ok((d, fd.0, fd.1));
         }
-        if fc >= fd {
+        if b - a <= 1e-3 {
+            break;
+        }
+        if fc.0 >= fd.0 {
             b = d;
             d = c;
             fd = fc;
@@ -637,7 +626,11 @@ fn golden_max(
             fd = f(d)?;
         }
     }
-    Ok(if fc >= fd { (c, fc) } else { (d, fd) })
+    Ok(if fc.0 >= fd.0 {
+        (c, fc.0, fc.1)
+    } else {
+        (d, fd.0, fd.1)
+    })
 }
 
 /// Log-spaced thicknesses for `from:to:n` (n ≥ 2 includes both ends; n = 1 gives `from`).
@@ -817,12 +810,66 @@ mod tests {
 
     #[test]
     fn golden_section_finds_a_smooth_maximum() {
-        let (x, m) = golden_max(-2.0, 3.0, |x| Ok(0.9 - (x - 0.7) * (x - 0.7))).unwrap();
+        let mut f = |x: f64| Ok((0.9 - (x - 0.7) * (x - 0.7), None));
+        let (x, m, _) = golden_max(-2.0, 3.0, &mut f).unwrap();
         assert!((x - 0.7).abs() < 1e-3, "{x}");
         assert!((m - 0.9).abs() < 1e-6, "{m}");
         // Stops early at a point above 1.
-        let (x, m) = golden_max(-2.0, 3.0, |x| Ok(1.5 - (x - 0.7) * (x - 0.7))).unwrap();
-        assert!(m > 1.0 && (x - 0.7).abs() < 0.71);
+        let mut f = |x: f64| Ok((1.5 - (x - 0.7) * (x - 0.7), Some(CheckKind::BondShear)));
+        let (x, m, k) = golden_max(-2.0, 3.0, &mut f).unwrap();
+        assert!(m > 1.0 && (x - 0.7).abs() < 0.71 && k == Some(CheckKind::BondShear));
+    }
+
+    /// Synthetic utilisations u(ln d) with known crossings.
+    fn search(u: impl Fn(f64) -> f64) -> MinThickness {
+        search_min_thickness(1e-9, 1e-2, |d| Ok((u(d.ln()), Some(CheckKind::BondShear)))).unwrap()
+    }
+
+    fn assert_crossing(m: &MinThickness, want: f64) {
+        let d = m.thickness.unwrap();
+        assert!(!m.all_pass_to_floor);
+        assert!((d.value - want).abs() <= d.err * 1.0001, "{d:?} vs {want}");
+        assert!(d.err <= 0.5 * D_MIN_RTOL * d.value * 1.001, "{d:?}");
+    }
+
+    #[test]
+    fn monotone_utilisation_crossing() {
+        // u = (d0/d)^1.5 fails below d0 = 3.7e-6.
+        let m = search(|x| (3.7e-6f64.ln() - x).exp().powf(1.5));
+        assert_crossing(&m, 3.7e-6);
+        assert!(m.evaluations < 60, "{}", m.evaluations);
+    }
+
+    #[test]
+    fn a_failing_band_gives_its_upper_edge() {
+        // A broad hump in ln d failing on [1e-7, 2e-5]; passing below and above.
+        let (a, b) = (1e-7f64.ln(), 2e-5f64.ln());
+        let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+        let m = search(|x| 2.0 - ((x - mid) / half).powi(2));
+        assert_crossing(&m, 2e-5);
+        // Bisection on the whole range cannot work: both ends pass.
+        assert!(2.0 - ((1e-9f64.ln() - mid) / half).powi(2) < 1.0);
+    }
+
+    #[test]
+    fn a_band_narrower_than_the_scan_step_is_found() {
+        // Peak 1.02 midway between two samples (the scan step in ln d is h = ln(1e7)/56);
+        // it fails for |ln d − c| < 0.1, a band narrower than the step, so no sample fails.
+        let h = 1e7f64.ln() / 56.0;
+        let c = 1e-2f64.ln() - 20.5 * h;
+        let m = search(|x| 1.02 - 2.0 * (x - c).powi(2));
+        let edge = (c + 0.1).exp();
+        assert_crossing(&m, edge);
+    }
+
+    #[test]
+    fn ends_of_the_search() {
+        let m = search(|_| 1.5);
+        assert_eq!(m.thickness, None);
+        assert_eq!(m.governing, Some(CheckKind::BondShear));
+        let m = search(|_| 0.2);
+        assert!(m.all_pass_to_floor);
+        assert_eq!(m.thickness.unwrap().value, 1e-9);
     }
 
     #[test]
