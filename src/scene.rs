@@ -858,7 +858,7 @@ safety_factor = 1.5
             e.contains("roughness.hurst") && e.contains("missing"),
             "{e}"
         );
-        let e = load(&SCENE, &[("roughness.model", "fractal")])
+        let e = load(SCENE, &[("roughness.model", "fractal")])
             .unwrap_err()
             .to_string();
         assert!(

@@ -20,7 +20,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Judge a coating design: contact area, interface stresses, pass/fail checks, d_min.
-    Check(check::CheckArgs),
+    Check(Box<check::CheckArgs>),
     /// List the materials library (bundled, plus --materials DIR).
     Materials(materials::MaterialsArgs),
 }
@@ -28,7 +28,7 @@ enum Command {
 pub fn run() -> i32 {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Check(args) => check::run(args),
+        Command::Check(args) => check::run(*args),
         Command::Materials(args) => materials::run(args),
     };
     match result {
