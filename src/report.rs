@@ -30,7 +30,11 @@ pub fn sig(x: f64, digits: usize) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");
     }
-    let e = x.abs().log10().floor() as i32;
+    // The exponent after rounding to `digits` (9.9999 → 10.00, not 10.000).
+    let e0 = x.abs().log10().floor() as i32;
+    let scale = 10f64.powi(digits as i32 - 1 - e0);
+    let rounded = (x * scale).round() / scale;
+    let e = rounded.abs().log10().floor() as i32;
     if (-3..6).contains(&e) {
         let decimals = (digits as i32 - 1 - e).max(0) as usize;
         format!("{x:.decimals$}")
@@ -151,7 +155,7 @@ fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
     rows.push((
         "criteria".into(),
         format!(
-            "epsilon = {}, safety factor = {}, checks: {}",
+            "epsilon = {:e}, safety factor = {}, checks: {}",
             c.epsilon,
             c.safety_factor,
             enabled_names(scene).join(", ")
@@ -247,7 +251,14 @@ pub fn human(scene: &Scene, outcome: &Outcome) -> String {
 
     let mut t = table(&["check", "value", "limit", "margin", "result"]);
     for ch in &outcome.checks {
-        let (v, l) = check_cells(ch);
+        let (mut v, l) = check_cells(ch);
+        if ch.kind == CheckKind::SubstrateYield {
+            v += if ch.value.value == ev.mean_contact_pressure.value {
+                " (mean contact pressure)"
+            } else {
+                " (interface peak)"
+            };
+        }
         let margin = ch
             .margin
             .map(|m| format!("{:+.1} %", 100.0 * m))
@@ -585,6 +596,9 @@ mod tests {
         assert_eq!(sig(2.5e-7, 3), "2.50e-7");
         assert_eq!(sig(3e8, 4), "3.000e8");
         assert_eq!(sig(0.0, 4), "0");
+        assert_eq!(sig(9.999999, 4), "10.00");
+        assert_eq!(sig(-0.00099996, 4), "-0.001000");
+        assert_eq!(sig(0.00099996, 3), "0.00100");
     }
 
     #[test]
