@@ -30,10 +30,11 @@
 //!    when it fails;
 //! 4. refines the pass/fail crossing by bisection in ln d until the bracket's relative width is at
 //!    most [`D_MIN_RTOL`]; d_min is the bracket's geometric midpoint and its error the half-width;
-//! 5. stops at the floor d_lo = max(1 nm, min(1e-6/q_L, 1e-4/q_hi)): below it the whole spectrum is
-//!    in the thin-film limit (every mode has q·d ≤ 1e-4) where the stresses no longer rise, and a
-//!    film thinner than 1 nm is not a continuum. When every sample down to d_lo passes, d_min is
-//!    reported as d_lo with `all_pass_to_floor` set.
+//! 5. stops at the floor d_lo = max(1 nm, min(1e-6/q_L, 1e-4/q_hi)): a film thinner than 1 nm
+//!    is not a continuum, and when the floor is above 1 nm every mode of the spectrum has
+//!    q·d ≤ 1e-4 there, the thin-film limit in which the interface stresses only fall further
+//!    as d → 0 (τ ∝ g → q·d). When every sample down to d_lo passes, d_min is reported as d_lo
+//!    with `all_pass_to_floor` set (and a warning naming the floor).
 //!
 //! Each evaluation during the search requests only what the enabled checks need (bond-shear:
 //! τ_rms; substrate-yield: A/A0 and σ_rms at the interface), reusing one [`Engine`] per spectrum.

@@ -174,8 +174,8 @@ fn non_monotone_band_is_found_where_naive_bisection_fails() {
         i_max > 0 && i_max < tau.len() - 1,
         "τ_peak(d) has an interior maximum"
     );
-    assert!(tau_floor < 0.5 * tau_max, "τ falls again as d → 0");
-    let bond = 0.5 * (tau_floor + tau_max).max(0.6 * tau_max);
+    assert!(tau_floor < 0.8 * tau_max, "τ falls again as d → 0");
+    let bond = 0.5 * (tau_floor + tau_max);
     let c = checker(paper_design(checks(true, false), bond, 2.5e8));
     let d_min = assert_d_min_matches_brute_force(&c, 100.0);
     assert!(d_min > d_peak);
