@@ -39,7 +39,7 @@
 //! Each evaluation during the search requests only what the enabled checks need (bond-shear:
 //! τ_rms; substrate-yield: A/A0 and σ_rms at the interface), reusing one [`Engine`] per spectrum.
 
-use crate::contact::{Contact, Engine, Request};
+use crate::contact::{self, Contact, Engine, NormalStress, Request};
 use crate::error::Error;
 use crate::layer::{Bilayer, Stack};
 use crate::prec::{Estimate, Settings, Termination};
@@ -328,7 +328,7 @@ impl Checker {
         let mut checks = Vec::new();
         let (mut tau_peak, mut bond_exceedance) = (None, None);
         if let Some(tau) = contact.tau_rms_interface {
-            let k = tails::tau_peak(1.0, eps);
+            let k = contact::tau_peak(1.0, eps);
             let peak = tau.map(|t| k * t, |_| k);
             if on.bond_shear {
                 checks.push(upper_check(
@@ -339,15 +339,18 @@ impl Checker {
             }
             tau_peak = Some(peak);
             if extras {
-                bond_exceedance = Some(tails::tau_exceedance(tau.value, d.bond_strength));
+                bond_exceedance = Some(contact::tau_exceedance(tau.value, d.bond_strength));
             }
         }
         let (mut sigma_peak_interface, mut yield_exceedance) = (None, None);
         if let Some(sigma) = contact.sigma_rms_interface {
-            let peak_at = |s: f64| tails::normal_peak(p0, s, eps);
-            let v = peak_at(sigma.value);
-            let dv = (peak_at(sigma.value + sigma.err) - v).abs();
-            let peak = Estimate::new(v, dv + 8.0 * crate::prec::EPS * v, sigma.status);
+            let at = |s: f64| NormalStress { p0, sigma_rms: s };
+            let mut peak = at(sigma.value).peak(eps);
+            peak.status = Estimate::worst(peak.status, sigma.status);
+            if extras {
+                // First-order propagation of σ_rms's error into the peak.
+                peak.err += (at(sigma.value + sigma.err).peak(eps).value - peak.value).abs();
+            }
             if let Some(y) = d.yield_strength {
                 if on.substrate_yield {
                     let governing = if peak.value >= mean_contact_pressure.value {
@@ -362,7 +365,7 @@ impl Checker {
                     ));
                 }
                 if extras {
-                    yield_exceedance = Some(tails::normal_exceedance(p0, sigma.value, y));
+                    yield_exceedance = Some(at(sigma.value).exceedance(y));
                 }
             }
             sigma_peak_interface = Some(peak);
@@ -651,160 +654,6 @@ pub fn log_space(from: f64, to: f64, n: usize) -> Vec<f64> {
             }
         })
         .collect()
-}
-
-/// Tails of the interface stress distributions (notes.md, "Distributions and peak values").
-///
-/// erf and erfc come from `libm` (musl's, accurate to about 1 ulp): statrs' erf/erfc are off by
-/// about 1e-10 relative (erfc(0.5) measured against mpmath), too coarse for 1e-12 tails.
-/// statrs' erfc_inv is accurate to a few ulps and is used for τ_peak.
-pub mod tails {
-    use libm::{erf, erfc};
-    use statrs::function::erf::erfc_inv;
-    use std::f64::consts::{PI, SQRT_2};
-
-    /// P(|τ| > level) for a zero-mean Gaussian τ with rms `tau_rms`: erfc(level/(√2 τ_rms)).
-    pub fn tau_exceedance(tau_rms: f64, level: f64) -> f64 {
-        if tau_rms <= 0.0 {
-            return if level > 0.0 { 0.0 } else { 1.0 };
-        }
-        erfc(level / (SQRT_2 * tau_rms))
-    }
-
-    /// The level τ_peak with P(|τ| > τ_peak) = eps: √2 τ_rms erfc⁻¹(eps).
-    pub fn tau_peak(tau_rms: f64, eps: f64) -> f64 {
-        SQRT_2 * tau_rms * erfc_inv(eps)
-    }
-
-    /// erfc(x − a) − erfc(x + a) for a > 0 without cancellation: when the interval is short
-    /// on the scale of e^{−t²} (a·max(1, |x|) < 1/2), the integral of (2/√π)e^{−t²} over
-    /// [x − a, x + a] by 10-point Gauss–Legendre (error below 1e-16 relative there), else the
-    /// plain difference (which then loses at most a factor 1/(1 − e^{−2}) in relative terms).
-    fn erfc_diff(x: f64, a: f64) -> f64 {
-        if a * x.abs().max(1.0) < 0.5 {
-            let (nodes, weights) = crate::quad::gl10();
-            let sum: f64 = nodes
-                .iter()
-                .zip(weights)
-                .map(|(&t, &w)| {
-                    let u = x + a * t;
-                    w * (-u * u).exp()
-                })
-                .sum();
-            sum * a * 2.0 / PI.sqrt()
-        } else {
-            erfc(x - a) - erfc(x + a)
-        }
-    }
-
-    /// P(σ > level) for the interface normal stress: Persson's form centred at p0 with rms
-    /// width s (the density [N(σ; p0, s) − N(σ; −p0, s)] / erf(p0/(√2 s)) on σ ≥ 0).
-    pub fn normal_exceedance(p0: f64, s: f64, level: f64) -> f64 {
-        if level <= 0.0 {
-            return 1.0;
-        }
-        if s <= 0.0 {
-            return if level < p0 { 1.0 } else { 0.0 };
-        }
-        let a = p0 / (SQRT_2 * s);
-        erfc_diff(level / (SQRT_2 * s), a) / (2.0 * erf(a))
-    }
-
-    /// The density of the interface normal stress at `level` (≥ 0).
-    fn normal_density(p0: f64, s: f64, level: f64) -> f64 {
-        let a = p0 / (SQRT_2 * s);
-        let z = (level - p0) / s;
-        let gauss = (-0.5 * z * z).exp() / ((2.0 * PI).sqrt() * s);
-        gauss * -(-2.0 * level * p0 / (s * s)).exp_m1() / erf(a)
-    }
-
-    /// The level exceeded on a fraction `eps` of the interface: P(σ > level) = eps, by
-    /// Newton's method on ln P inside a bisection bracket [0, upper bound], to 1e-14 relative.
-    pub fn normal_peak(p0: f64, s: f64, eps: f64) -> f64 {
-        if s <= 0.0 {
-            return p0;
-        }
-        let a = p0 / (SQRT_2 * s);
-        // P(σ > L) ≤ erfc((L − p0)/(√2 s)) / (2 erf a): an upper bound for the root.
-        let t = (2.0 * eps * erf(a)).min(1.0);
-        let (mut lo, mut hi) = (0.0, p0 + SQRT_2 * s * erfc_inv(t).max(0.0) + 1e-12 * s);
-        let target = eps.ln();
-        let mut x = hi;
-        for _ in 0..100 {
-            let p = normal_exceedance(p0, s, x);
-            let g = p.ln() - target;
-            if g > 0.0 {
-                lo = x;
-            } else {
-                hi = x;
-            }
-            let slope = -normal_density(p0, s, x) / p;
-            let mut next = x - g / slope;
-            if !(next > lo && next < hi && next.is_finite()) {
-                next = 0.5 * (lo + hi);
-            }
-            if (next - x).abs() <= 1e-15 * x.abs() || hi - lo <= 1e-15 * hi {
-                return next;
-            }
-            x = next;
-        }
-        x
-    }
-
-    // Reference values are kept as mpmath printed them (more digits than f64 holds).
-    #[allow(clippy::excessive_precision)]
-    #[cfg(test)]
-    mod tests {
-        use super::*;
-
-        fn rel(a: f64, b: f64) -> f64 {
-            (a - b).abs() / b.abs()
-        }
-
-        // Reference values from mpmath at 50 digits (erfinv, erfc, findroot; the script is
-        // in the doc of each case: sqrt(2)*erfinv(1-eps), and the root of P(σ > L) = eps).
-        #[test]
-        fn tau_peak_matches_mpmath() {
-            for (eps, want) in [
-                (1e-6, 4.8916384756985903862),
-                (1e-3, 3.2905267314918947932),
-                (0.5, 0.6744897501960817432),
-                (1e-12, 7.130506848171324458),
-            ] {
-                assert!(rel(tau_peak(1.0, eps), want) < 1e-13, "{eps}");
-                assert!(rel(tau_exceedance(1.0, want), eps) < 1e-12, "{eps}");
-            }
-        }
-
-        #[test]
-        fn normal_tails_match_mpmath() {
-            for (p0, s, level, want) in [
-                (1e5, 2.22e5, 1e6, 0.000071363725175927777202),
-                (1e5, 1e11, 3e11, 0.011108996538258969991),
-                (1e5, 1e3, 1.05e5, 2.8665157187919391167e-7),
-            ] {
-                let got = normal_exceedance(p0, s, level);
-                assert!(rel(got, want) < 1e-13, "{p0} {s} {level}: {got} vs {want}");
-            }
-            for (p0, s, eps, want) in [
-                (1e5, 2.22e5, 1e-6, 1201435.4789189519625),
-                (1e5, 1e11, 1e-6, 525652176975.78080742),
-                (1e5, 1e3, 1e-6, 104753.42430882289896),
-                (1e5, 1e2, 0.3, 100052.44005127080408),
-                (1e5, 1e5, 0.9, 54437.864440880885955),
-            ] {
-                let got = normal_peak(p0, s, eps);
-                assert!(rel(got, want) < 1e-12, "{p0} {s} {eps}: {got} vs {want}");
-            }
-        }
-
-        #[test]
-        fn degenerate_widths() {
-            assert_eq!(normal_peak(1e5, 0.0, 1e-6), 1e5);
-            assert_eq!(tau_exceedance(0.0, 1.0), 0.0);
-            assert_eq!(normal_exceedance(1e5, 1e4, 0.0), 1.0);
-        }
-    }
 }
 
 #[cfg(test)]

@@ -22,6 +22,7 @@ pub mod quad;
 pub mod report;
 pub mod scene;
 pub mod tomlin;
+pub mod topography;
 pub mod units;
 
 pub use error::Error;

@@ -6,6 +6,9 @@ mod materials;
 
 use clap::{Parser, Subcommand};
 
+mod psd;
+mod synth;
+
 #[derive(Parser)]
 #[command(
     name = "coatcheck",
@@ -23,6 +26,10 @@ enum Command {
     Check(Box<check::CheckArgs>),
     /// List the materials library (bundled, plus --materials DIR).
     Materials(materials::MaterialsArgs),
+    /// Heights (line scans or a height map) → power spectrum C(q), with a summary.
+    Psd(psd::PsdArgs),
+    /// Write a synthetic self-affine surface (fixed seed) as a height map or line scans.
+    Synth(synth::SynthArgs),
 }
 
 pub fn run() -> i32 {
@@ -30,6 +37,8 @@ pub fn run() -> i32 {
     let result = match cli.command {
         Command::Check(args) => check::run(*args),
         Command::Materials(args) => materials::run(args),
+        Command::Psd(a) => psd::run(a),
+        Command::Synth(a) => synth::run(a),
     };
     match result {
         Ok(code) => code,

@@ -96,7 +96,7 @@ impl Tabulated {
     pub fn restricted(&self, q_min: Option<f64>, q_max: Option<f64>) -> Result<Self, Error> {
         let lo = q_min.unwrap_or(self.q[0]).max(self.q[0]);
         let hi = q_max.unwrap_or(f64::INFINITY).min(*self.q.last().unwrap());
-        if !(lo < hi) {
+        if lo >= hi || lo.is_nan() || hi.is_nan() {
             return Err(Error::invalid(
                 "q range",
                 format!("[{lo}, {hi}]"),

@@ -1,4 +1,8 @@
 //! Integration tests: one binary, one module per area.
 mod check;
 mod cli_check;
+mod contact;
 mod layer;
+mod psd_convert;
+mod psd_read;
+mod topography;
