@@ -15,10 +15,12 @@ fn median(mut v: Vec<Duration>) -> Duration {
     v[v.len() / 2]
 }
 
+/// Median of `reps` runs (fewer when one run is slow: at most about 3 s per row, at least 5).
 fn time(reps: usize, mut f: impl FnMut()) -> Duration {
-    for _ in 0..reps.div_ceil(10) {
-        f();
-    }
+    let t = Instant::now();
+    f();
+    let one = t.elapsed().as_secs_f64();
+    let reps = reps.min((3.0 / one) as usize).max(5);
     median(
         (0..reps)
             .map(|_| {
