@@ -539,8 +539,9 @@ pub fn search_min_thickness(
     let h = (hi / lo).ln() / n as f64;
     // Samples from the top: (ln d, utilisation).
     let mut samples: Vec<(f64, f64)> = vec![(hi.ln(), u_hi)];
-    // ((ln d, u) failing, (ln d, u) passing above it, the failing check)
-    let mut failing: Option<((f64, f64), (f64, f64), Option<CheckKind>)> = None;
+    // (ln d, u) failing, (ln d, u) passing above it, and the failing check.
+    type Sample = (f64, f64);
+    let mut failing: Option<(Sample, Sample, Option<CheckKind>)> = None;
     for k in 1..=n {
         let x = hi.ln() - k as f64 * h;
         let (u, kind) = util(x)?;
