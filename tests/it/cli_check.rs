@@ -488,3 +488,37 @@ fn output_file_csv_and_sweep() {
     assert!((d[0] / 1e-7 - 1.0).abs() < 1e-12 && (d[8] / 1e-3 - 1.0).abs() < 1e-12);
     assert!((d[4] / 1e-5 - 1.0).abs() < 1e-12, "log-spaced: {d:?}");
 }
+
+#[test]
+fn flags_override_the_scene_and_materials_dirs_override_the_library() {
+    // The paper's film at 0.5 µm is below its d_min (about 0.92 µm): exit 1.
+    let o = run(&[
+        "check",
+        &example("paper-rubber-on-steel.toml"),
+        "--thickness",
+        "0.5um",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    // A weaker "epoxy" from --materials makes the paper's 10 µm design fail bond-shear.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("weak-epoxy.toml"),
+        "schema_version = 1\nname = \"epoxy\"\nkind = \"bond\"\nshear_strength = \"0.3 MPa\"\nsource = \"test\"\n",
+    )
+    .unwrap();
+    let o = run(&[
+        "check",
+        &example("paper-rubber-on-steel.toml"),
+        "--materials",
+        dir.path().to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v = json_of(&o);
+    let bond = &v["checks"][0];
+    assert_eq!(bond["name"], "bond-shear");
+    assert_eq!(bond["limit"], 3e5);
+    assert_eq!(bond["pass"], false);
+    assert_eq!(v["governing_check"], "bond-shear");
+}
