@@ -7,6 +7,7 @@ mod materials;
 use clap::{Parser, Subcommand};
 
 mod psd;
+mod response;
 mod synth;
 
 #[derive(Parser)]
@@ -26,6 +27,8 @@ enum Command {
     Check(Box<check::CheckArgs>),
     /// List the materials library (bundled, plus --materials DIR).
     Materials(materials::MaterialsArgs),
+    /// Layer response S, f, g over q·d (eq. 7 and the static App. B kernels; Fig. 14).
+    Response(response::ResponseArgs),
     /// Heights (line scans or a height map) → power spectrum C(q), with a summary.
     Psd(psd::PsdArgs),
     /// Write a synthetic self-affine surface (fixed seed) as a height map or line scans.
@@ -37,6 +40,7 @@ pub fn run() -> i32 {
     let result = match cli.command {
         Command::Check(args) => check::run(*args),
         Command::Materials(args) => materials::run(args),
+        Command::Response(a) => response::run(a),
         Command::Psd(a) => psd::run(a),
         Command::Synth(a) => synth::run(a),
     };

@@ -1,6 +1,7 @@
 //! Integration tests: one binary, one module per area.
 mod check;
 mod cli_check;
+mod cli_response;
 mod contact;
 mod layer;
 mod psd_convert;
