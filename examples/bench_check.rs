@@ -113,7 +113,7 @@ fn main() {
         println!("(no target/release/coatcheck: run `cargo build --release` to time the command)");
     }
     println!(
-        "1000-point measured PSD, {reps} repetitions (median); d_min used {evals} engine evaluations"
+        "1000-point measured PSD, median of up to {reps} repetitions; d_min used {evals} engine evaluations"
     );
     println!("{:<64} {:>12}", "what", "median");
     for (label, t) in rows {
