@@ -474,7 +474,7 @@ impl Checker {
                 ));
             }
         }
-        if evaluation.contact.low_octave_share > 0.5 {
+        if self.q_high > 2.0 * self.q_low && evaluation.contact.low_octave_share > 0.5 {
             warnings.push(format!(
                 "{:.0} % of the contact stress variance comes from the lowest octave of the spectrum: the result depends on where the data start (q_min)",
                 100.0 * evaluation.contact.low_octave_share
