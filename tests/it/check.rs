@@ -347,3 +347,37 @@ fn peak_definitions_match_mpmath() {
         assert!(rel(got, want) < 1e-9, "{p0} {s} {eps}: {got}");
     }
 }
+
+/// A spectrum whose lowest octave carries most of G(q1) gets a warning that the result depends
+/// on where the data start; the paper's self-affine spectrum (H = 1: equal G per octave) not.
+#[test]
+fn low_octave_dominance_is_warned() {
+    use coatcheck::psd::Tabulated;
+    let q: Vec<f64> = vec![1e5, 1.5e5, 2e5, 1e6, 1e7];
+    let c: Vec<f64> = q
+        .iter()
+        .map(|&q| {
+            if q <= 2e5 {
+                1e-20
+            } else {
+                1e-20 * (q / 2e5).powi(-8)
+            }
+        })
+        .collect();
+    let steep = Spectrum::Tabulated(Tabulated::new(q, c).unwrap())
+        .scaled_to_rms_slope(0.5)
+        .unwrap();
+    let design = paper_design(checks(true, false), 1e7, 2.5e8);
+    let out = Checker::new(&steep, design.clone(), Settings::default())
+        .unwrap()
+        .run(10e-6)
+        .unwrap();
+    assert!(out.evaluation.contact.low_octave_share > 0.5);
+    assert!(
+        out.warnings.iter().any(|w| w.contains("lowest octave")),
+        "{:?}",
+        out.warnings
+    );
+    let paper = checker(design).run(10e-6).unwrap();
+    assert!(!paper.warnings.iter().any(|w| w.contains("lowest octave")));
+}
