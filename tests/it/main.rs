@@ -1,4 +1,6 @@
 //! Integration tests: one binary, one module per area.
+mod check;
+mod cli_check;
 mod cli_response;
 mod contact;
 mod layer;
