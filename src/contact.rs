@@ -27,8 +27,9 @@ use crate::layer::Stack;
 use crate::prec::{EPS, Estimate, Settings, Termination};
 use crate::psd::Spectrum;
 use crate::quad::{self, ExpGauss2};
+use libm::{erf, erfc};
 use serde::Serialize;
-use statrs::function::erf::{erf, erfc, erfc_inv};
+use statrs::function::erf::erfc_inv;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
