@@ -1,10 +1,41 @@
-//! Contact: G(q), P(q), A/A0, rms stresses and their distributions (App. B).
-//! (Skeleton: filled in by the engine commit.)
+//! Contact: G(q), P(q), A/A0 (eqs. B11, B12), rms stresses (B8–B10), E_eff (Fig. 10) and the
+//! stress distributions of Appendix B.
+//!
+//! Conventions (notes.md): z = 0 is the film's top surface, z = d the film–substrate interface.
+//! - G(q) = (π/4) E0*² ∫_{q_L}^{q} q'³ C S⁻² dq' (eq. B12, q_L the spectrum's lowest q),
+//!   P(q) = erf(p0/(2√G)) (B11), A/A0 = P(q1).
+//! - σ_rms(z)² = (π/2) E0*² ∫ q³ C S⁻² P F² dq = 2∫ P F² dG, F = 1 at z = 0, f at z = d; τ_rms² the
+//!   same with g (B8–B10 with d²q = 2πq dq). At z = 0 this has a closed form in G(q1):
+//!   σ_top² = 2[G1 erf(u) + (p0²/(2√π))(e^{−u²}/u − √π erfc u)], u = p0/(2√G1).
+//! - E_eff*² = E0*² ∫q³C S⁻² dq / ∫q³C dq; reported as E_eff*/E0* ("E_eff/E_film").
+//!
+//! Quadrature. In u = ln q the integrand is W(u)·ψ(u), W = q⁴C. Panels run between the
+//! spectrum's own knots (data points, q0, q_r, q1, and 2q_L for the low-octave share), split so
+//! that none is wider than h = 1.25·rtol^{1/4} in ln q. On each panel W is replaced by the exact
+//! power law through its end values (exact for tabulated and self-affine spectra; the smooth
+//! remainder ρ = W/W_ref of a Gaussian band goes into ψ), and a two-node Gauss rule for that
+//! exponential weight integrates ψ = ρ S⁻² (times P F² for the interface). Its error is
+//! ψ⁗(ξ)·∫W(u−u1)²(u−u2)²du/24, estimated with the fourth divided difference of ψ over five
+//! neighbouring nodes and a safety factor 2. Nodes and weights do not depend on d: an [`Engine`]
+//! is built once per spectrum and serves every thickness. G at the interior nodes (for P) comes
+//! from the same rule's partial integrals (exact for ψ linear on the panel).
+//! If the estimate misses rtol, the evaluation is repeated on grids with panels halved, up to
+//! [`MAX_REFINE`] times, and reports `ToleranceNotReached` if it still misses.
 
+use crate::error::Error;
 use crate::layer::Stack;
-use crate::prec::{Estimate, Settings};
+use crate::prec::{EPS, Estimate, Settings, Termination};
 use crate::psd::Spectrum;
+use crate::quad::{self, ExpGauss2};
 use serde::Serialize;
+use statrs::function::erf::{erf, erfc, erfc_inv};
+use std::f64::consts::PI;
+use std::sync::OnceLock;
+
+/// How many times a grid may be refined (panels halved) when the error estimate misses rtol.
+pub const MAX_REFINE: usize = 3;
+/// Safety factor on the divided-difference error estimate.
+const ERR_SAFETY: f64 = 2.0;
 
 /// Which quantities to compute; only these are evaluated (the area alone never touches f, g).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -28,6 +59,10 @@ impl Request {
             e_eff: true,
         }
     }
+
+    fn interface(&self) -> bool {
+        self.sigma_interface || self.tau_interface
+    }
 }
 
 /// Results at one thickness; fields not requested are `None`.
@@ -43,31 +78,804 @@ pub struct Contact {
     pub sigma_rms_interface: Option<Estimate>,
     pub tau_rms_interface: Option<Estimate>,
     pub e_eff_over_e_film: Option<Estimate>,
-    /// Share of G(q1) that comes from the lowest octave [q_L, 2 q_L] of the spectrum.
+    /// Share of G(q1) from the lowest octave [q_L, 2 q_L] of the spectrum (1 when the spectrum
+    /// spans less than an octave).
     pub low_octave_share: f64,
+    /// How many kernel evaluations the result took (all grids tried).
+    pub kernel_evaluations: usize,
 }
 
-/// The d-independent part of the contact integrals for one spectrum (quadrature grid, weights).
+/// One quadrature grid: nodes in ascending q with d-independent weights.
+struct Grid {
+    q: Vec<f64>,
+    u: Vec<f64>,
+    /// Rule weight of node j (∫ W_ref ℓ_j du over its panel), ρ_j excluded.
+    w: Vec<f64>,
+    /// ρ_j = W(u_j)/W_ref(u_j).
+    rho: Vec<f64>,
+    /// Per panel: error constant ∫ W_ref (u−u1)²(u−u2)² du / 24.
+    err4: Vec<f64>,
+    /// Per panel: partial-integral coefficients for G at its two nodes (from the panel's left end).
+    partial: Vec<[[f64; 2]; 2]>,
+    /// Per panel: width in u and left end.
+    width: Vec<f64>,
+    left: Vec<f64>,
+    /// Number of panels below 2 q_L.
+    low_octave_panels: usize,
+}
+
+impl Grid {
+    fn new(spectrum: &Spectrum, h_max: f64) -> Grid {
+        let mut knots = spectrum.knots();
+        let q_l = knots[0];
+        let q_oct = 2.0 * q_l;
+        if q_oct < *knots.last().unwrap() && !knots.contains(&q_oct) {
+            let at = knots.partition_point(|&k| k < q_oct);
+            knots.insert(at, q_oct);
+        }
+        let mut g = Grid {
+            q: vec![],
+            u: vec![],
+            w: vec![],
+            rho: vec![],
+            err4: vec![],
+            partial: vec![],
+            width: vec![],
+            left: vec![],
+            low_octave_panels: 0,
+        };
+        let ln_w = |u: f64| 4.0 * u + spectrum.c(u.exp()).ln();
+        for pair in knots.windows(2) {
+            let (ua, ub) = (pair[0].ln(), pair[1].ln());
+            let n = (((ub - ua) / h_max).ceil() as usize).max(1);
+            let h = (ub - ua) / n as f64;
+            // Ends of sub-panels: exact knots at both ends, interior points equally spaced.
+            let ends: Vec<f64> = (0..=n)
+                .map(|i| if i == n { ub } else { ua + i as f64 * h })
+                .collect();
+            let lw: Vec<f64> = ends
+                .iter()
+                .enumerate()
+                .map(|(i, &u)| match i {
+                    0 => 4.0 * ua + spectrum.c(pair[0]).ln(),
+                    i if i == n => 4.0 * ub + spectrum.c(pair[1]).ln(),
+                    _ => ln_w(u),
+                })
+                .collect();
+            for i in 0..n {
+                let (a, b) = (ends[i], ends[i + 1]);
+                let width = b - a;
+                let (lwa, lwb) = (lw[i], lw[i + 1]);
+                // Orient so that the weight decays from s = 0: z = −|Δ ln W|.
+                let flip = lwb > lwa;
+                let (lw_max, z) = if flip {
+                    (lwb, lwa - lwb)
+                } else {
+                    (lwa, lwb - lwa)
+                };
+                let rule = ExpGauss2::new(z);
+                let scale = lw_max.exp() * width;
+                // Node positions in u, ascending.
+                let mut nodes = [0usize, 1];
+                let pos = |s: f64| if flip { b - s * width } else { a + s * width };
+                if flip {
+                    nodes = [1, 0];
+                }
+                for &k in &nodes {
+                    let u = pos(rule.s[k]);
+                    let q = u.exp();
+                    let w_ref = lw_max + z * rule.s[k];
+                    g.q.push(q);
+                    g.u.push(u);
+                    g.w.push(rule.w[k] * scale);
+                    g.rho.push((ln_w(u) - w_ref).exp());
+                }
+                // partial[j][k]: G from the panel's left end to ascending node j, per ascending node k.
+                let mut partial = [[0.0; 2]; 2];
+                for (jj, &j) in nodes.iter().enumerate() {
+                    for (kk, &k) in nodes.iter().enumerate() {
+                        let from_s0 = rule.partial[j][k] * scale;
+                        partial[jj][kk] = if flip {
+                            rule.w[k] * scale - from_s0
+                        } else {
+                            from_s0
+                        };
+                    }
+                }
+                g.partial.push(partial);
+                g.err4.push(rule.err4 * scale * width.powi(4));
+                g.width.push(width);
+                g.left.push(a);
+                if b <= q_oct.ln() + 1e-12 {
+                    g.low_octave_panels += 1;
+                }
+            }
+        }
+        g
+    }
+
+    fn panels(&self) -> usize {
+        self.err4.len()
+    }
+
+    /// Σ_j w_j ρ_j ψ_j with its error estimate (divided differences of ρψ).
+    fn integrate(&self, psi: &[f64]) -> (f64, f64) {
+        let mut sum = 0.0;
+        let mut abs = 0.0;
+        let mut err = 0.0;
+        let n = self.q.len();
+        let f: Vec<f64> = psi.iter().zip(&self.rho).map(|(p, r)| p * r).collect();
+        for p in 0..self.panels() {
+            let (j0, j1) = (2 * p, 2 * p + 1);
+            let v = self.w[j0] * f[j0] + self.w[j1] * f[j1];
+            sum += v;
+            abs += v.abs();
+            if n >= 5 {
+                let start = (2 * p).saturating_sub(2).min(n - 5);
+                err += self.err4[p]
+                    * (24.0 * divided_difference4(&self.u[start..start + 5], &f[start..start + 5]))
+                        .abs();
+            }
+        }
+        (sum, ERR_SAFETY * err + 8.0 * EPS * abs * (n as f64).sqrt())
+    }
+}
+
+/// How far the graded region reaches above q_L, in panel widths h (the two-node rule is used
+/// only where a panel is narrower than 1/64 of its distance to q_L).
+const GRADED_SPAN: f64 = 64.0;
+/// Width (in ln q) of the innermost piece above q_L, done in closed form.
+const INNER_WIDTH: f64 = 1e-11;
+
+/// One 6-point Gauss–Legendre panel of the graded region, with a 5-point companion rule for
+/// the error estimate. Weights include W = q⁴C at the node; `b6`, `b5` integrate the
+/// 6-node interpolant of the G integrand from the panel's left end to each node.
+struct GlPanel {
+    q6: [f64; 6],
+    w6: [f64; 6],
+    b6: [[f64; 6]; 6],
+    q5: [f64; 5],
+    w5: [f64; 5],
+    b5: [[f64; 6]; 5],
+}
+
+/// The interface quadrature near q_L, where P(G(u)) ∝ (u − u_L)^{-1/2} once G ≫ p0²: panels
+/// halving towards q_L (each as wide as its distance to q_L, split at the spectrum's knots),
+/// 6-point Gauss–Legendre on each (error: the difference to 5 points), and the innermost
+/// [u_L, u_L + 1e-11] in closed form, ∫_0^{G} P dG being known exactly.
+struct Graded {
+    panels: Vec<GlPanel>,
+    /// First two-node panel of the base grid after the graded region.
+    base_from: usize,
+    q_l: f64,
+    w_l: f64,
+}
+
+struct Near {
+    g_raw: f64,
+    g_raw_err: f64,
+    sigma: (f64, f64),
+    tau: (f64, f64),
+}
+
+/// ∫_{-1}^{y} ℓ_k(x) dx for the Lagrange basis on `nodes`.
+fn lagrange_integral(nodes: &[f64], k: usize, y: f64) -> f64 {
+    let (x, w) = quad::gauss_legendre(nodes.len());
+    let half = 0.5 * (y + 1.0);
+    x.iter()
+        .zip(&w)
+        .map(|(&xi, &wi)| {
+            let t = -1.0 + half * (xi + 1.0);
+            let l: f64 = nodes
+                .iter()
+                .enumerate()
+                .filter(|&(m, _)| m != k)
+                .map(|(_, &xm)| (t - xm) / (nodes[k] - xm))
+                .product();
+            wi * l
+        })
+        .sum::<f64>()
+        * half
+}
+
+impl Graded {
+    fn new(spectrum: &Spectrum, grid: &Grid, h: f64) -> Graded {
+        let q_l = spectrum.q_low();
+        let u0 = q_l.ln();
+        let u_end = spectrum.support().1.ln();
+        let base_from = (0..grid.panels())
+            .find(|&p| grid.left[p] - u0 >= GRADED_SPAN * h)
+            .unwrap_or(grid.panels());
+        let span = if base_from < grid.panels() {
+            grid.left[base_from] - u0
+        } else {
+            u_end - u0
+        };
+        // Offsets from u_L of the panel ends: halving steps, plus every base-grid end (knots).
+        let mut ends = vec![];
+        let mut delta = span;
+        while delta > INNER_WIDTH {
+            ends.push(delta);
+            delta *= 0.5;
+        }
+        ends.push(delta);
+        ends.extend(
+            grid.left[..base_from]
+                .iter()
+                .map(|&l| l - u0)
+                .filter(|&o| o > delta && o < span),
+        );
+        ends.sort_by(f64::total_cmp);
+        ends.dedup_by(|a, b| (*a - *b).abs() <= 1e-14 * b.abs());
+        let (x6, gw6) = quad::gauss_legendre(6);
+        let (x5, gw5) = quad::gauss_legendre(5);
+        let mut b6n = [[0.0; 6]; 6];
+        let mut b5n = [[0.0; 6]; 5];
+        for k in 0..6 {
+            for j in 0..6 {
+                b6n[j][k] = lagrange_integral(&x6, k, x6[j]);
+            }
+            for j in 0..5 {
+                b5n[j][k] = lagrange_integral(&x6, k, x5[j]);
+            }
+        }
+        let w_of = |q: f64| q.powi(4) * spectrum.c(q);
+        let mut panels = vec![];
+        for pair in ends.windows(2) {
+            let (a, b) = (pair[0], pair[1]);
+            let half = 0.5 * (b - a);
+            let at = |x: f64| q_l * (a + half * (x + 1.0)).exp();
+            let q6: [f64; 6] = std::array::from_fn(|k| at(x6[k]));
+            let q5: [f64; 5] = std::array::from_fn(|k| at(x5[k]));
+            let wq6: [f64; 6] = std::array::from_fn(|k| w_of(q6[k]));
+            panels.push(GlPanel {
+                q6,
+                w6: std::array::from_fn(|k| gw6[k] * half * wq6[k]),
+                b6: std::array::from_fn(|j| std::array::from_fn(|k| b6n[j][k] * half * wq6[k])),
+                q5,
+                w5: std::array::from_fn(|k| gw5[k] * half * w_of(q5[k])),
+                b5: std::array::from_fn(|j| std::array::from_fn(|k| b5n[j][k] * half * wq6[k])),
+            });
+        }
+        let mut g = Graded {
+            panels,
+            base_from,
+            q_l,
+            w_l: w_of(q_l),
+        };
+        // The innermost piece's width is the first panel's left offset.
+        g.panels.shrink_to_fit();
+        g.w_l *= ends[0];
+        g
+    }
+
+    fn evaluations(&self) -> usize {
+        11 * self.panels.len() + 1
+    }
+
+    fn integrate(
+        &self,
+        layers: &crate::layer::Bilayer,
+        d: f64,
+        p0: f64,
+        cg: f64,
+        req: Request,
+    ) -> Near {
+        let kf = |q: f64| {
+            let r = layers.response(q * d);
+            (1.0 / (r.s * r.s), r.f * r.f, r.g * r.g)
+        };
+        // Innermost piece: G grows linearly from 0, F² is constant to 1e-10.
+        let (k0, f0, g0) = kf(self.q_l);
+        let g_inner = self.w_l * k0;
+        let j0 = top_variance_half(p0, cg * g_inner) / cg;
+        let mut near = Near {
+            g_raw: g_inner,
+            g_raw_err: 1e-9 * g_inner,
+            sigma: (f0 * j0, 1e-9 * f0 * j0),
+            tau: (g0 * j0, 1e-9 * g0 * j0),
+        };
+        for panel in &self.panels {
+            let e6: [(f64, f64, f64); 6] = std::array::from_fn(|k| kf(panel.q6[k]));
+            let e5: [(f64, f64, f64); 5] = std::array::from_fn(|k| kf(panel.q5[k]));
+            let g6: f64 = (0..6).map(|k| panel.w6[k] * e6[k].0).sum();
+            let g5: f64 = (0..5).map(|k| panel.w5[k] * e5[k].0).sum();
+            let p6: [f64; 6] = std::array::from_fn(|j| {
+                contact_probability(
+                    p0,
+                    cg * (near.g_raw + (0..6).map(|k| panel.b6[j][k] * e6[k].0).sum::<f64>()),
+                )
+            });
+            let p5: [f64; 5] = std::array::from_fn(|j| {
+                contact_probability(
+                    p0,
+                    cg * (near.g_raw + (0..6).map(|k| panel.b5[j][k] * e6[k].0).sum::<f64>()),
+                )
+            });
+            let add = |acc: &mut (f64, f64), pick: fn(&(f64, f64, f64)) -> f64| {
+                let i6: f64 = (0..6)
+                    .map(|k| panel.w6[k] * e6[k].0 * p6[k] * pick(&e6[k]))
+                    .sum();
+                let i5: f64 = (0..5)
+                    .map(|k| panel.w5[k] * e5[k].0 * p5[k] * pick(&e5[k]))
+                    .sum();
+                acc.0 += i6;
+                acc.1 += (i6 - i5).abs() + 8.0 * EPS * i6.abs();
+            };
+            if req.sigma_interface {
+                add(&mut near.sigma, |e| e.1);
+            }
+            if req.tau_interface {
+                add(&mut near.tau, |e| e.2);
+            }
+            near.g_raw += g6;
+            near.g_raw_err += (g6 - g5).abs();
+        }
+        near
+    }
+}
+
+/// Fourth divided difference f[u0..u4].
+fn divided_difference4(u: &[f64], f: &[f64]) -> f64 {
+    let mut d = [f[0], f[1], f[2], f[3], f[4]];
+    for level in 1..5 {
+        for i in 0..5 - level {
+            d[i] = (d[i + 1] - d[i]) / (u[i + level] - u[i]);
+        }
+    }
+    d[0]
+}
+
+/// The d-independent part of the contact integrals for one spectrum; serves every thickness.
 pub struct Engine {
-    _spectrum: Spectrum,
-    _settings: Settings,
+    spectrum: Spectrum,
+    settings: Settings,
+    grids: [OnceLock<Grid>; MAX_REFINE + 1],
+    graded: [OnceLock<Graded>; MAX_REFINE + 1],
+}
+
+/// Panel width (in ln q) for a relative tolerance: the two-node rule's relative error per panel
+/// is about h⁴ ψ⁗/(4320 ψ), with |ψ⁗/ψ| up to ~6⁴ where S⁻² ∝ (qd)⁻⁶.
+pub fn panel_width(rtol: f64) -> f64 {
+    (1.25 * rtol.max(1e-14).powf(0.25)).min(0.5)
 }
 
 impl Engine {
     pub fn new(spectrum: &Spectrum, settings: Settings) -> Self {
         Self {
-            _spectrum: spectrum.clone(),
-            _settings: settings,
+            spectrum: spectrum.clone(),
+            settings,
+            grids: Default::default(),
+            graded: Default::default(),
         }
     }
 
+    pub fn spectrum(&self) -> &Spectrum {
+        &self.spectrum
+    }
+
+    pub fn settings(&self) -> Settings {
+        self.settings
+    }
+
+    fn grid(&self, level: usize) -> &Grid {
+        self.grids[level].get_or_init(|| {
+            Grid::new(
+                &self.spectrum,
+                panel_width(self.settings.rtol) / (1 << level) as f64,
+            )
+        })
+    }
+
+    fn graded(&self, level: usize) -> &Graded {
+        self.graded[level].get_or_init(|| {
+            Graded::new(
+                &self.spectrum,
+                self.grid(level),
+                panel_width(self.settings.rtol) / (1 << level) as f64,
+            )
+        })
+    }
+
     /// Evaluate at one stack (thickness) and nominal pressure p0 (Pa).
-    pub fn evaluate(
-        &self,
-        _stack: &Stack,
-        _p0: f64,
-        _request: Request,
-    ) -> Result<Contact, crate::Error> {
-        todo!()
+    pub fn evaluate(&self, stack: &Stack, p0: f64, request: Request) -> Result<Contact, Error> {
+        if !(p0.is_finite() && p0 > 0.0) {
+            return Err(Error::invalid(
+                "nominal pressure p0",
+                p0,
+                "a finite pressure > 0 in Pa",
+            ));
+        }
+        let mut evaluations = 0;
+        let mut last = None;
+        for level in 0..=MAX_REFINE {
+            let grid = self.grid(level);
+            let graded = request.interface().then(|| self.graded(level));
+            evaluations += grid.q.len() + graded.map_or(0, |g| g.evaluations());
+            let c = evaluate_on(grid, graded, stack, p0, request, evaluations)?;
+            let done = converged(&c, self.settings.rtol);
+            last = Some(c);
+            if done {
+                break;
+            }
+        }
+        let mut c = last.expect("at least one grid level");
+        if !converged(&c, self.settings.rtol) {
+            mark_not_reached(&mut c, self.settings.rtol);
+        }
+        Ok(c)
+    }
+}
+
+fn all_estimates(c: &Contact) -> impl Iterator<Item = &Estimate> {
+    [
+        Some(&c.g1),
+        Some(&c.area_fraction),
+        c.sigma_rms_top.as_ref(),
+        c.sigma_rms_interface.as_ref(),
+        c.tau_rms_interface.as_ref(),
+        c.e_eff_over_e_film.as_ref(),
+    ]
+    .into_iter()
+    .flatten()
+}
+
+fn converged(c: &Contact, rtol: f64) -> bool {
+    all_estimates(c).all(|e| e.err <= rtol * e.value.abs() || e.value == 0.0 && e.err == 0.0)
+}
+
+fn mark_not_reached(c: &mut Contact, rtol: f64) {
+    for e in [
+        Some(&mut c.g1),
+        Some(&mut c.area_fraction),
+        c.sigma_rms_top.as_mut(),
+        c.sigma_rms_interface.as_mut(),
+        c.tau_rms_interface.as_mut(),
+        c.e_eff_over_e_film.as_mut(),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        if e.err > rtol * e.value.abs() {
+            e.status = Termination::ToleranceNotReached;
+        }
+    }
+}
+
+/// P(G) = erf(p0 / (2√G)), with P(0) = 1.
+fn contact_probability(p0: f64, g: f64) -> f64 {
+    if g <= 0.0 {
+        1.0
+    } else {
+        erf(p0 / (2.0 * g.sqrt()))
+    }
+}
+
+/// |dP/dG| = (p0 / (2√π)) G^{-3/2} e^{-p0²/(4G)}.
+fn contact_probability_slope(p0: f64, g: f64) -> f64 {
+    if g <= 0.0 {
+        0.0
+    } else {
+        p0 / (2.0 * PI.sqrt()) * g.powf(-1.5) * (-p0 * p0 / (4.0 * g)).exp()
+    }
+}
+
+/// σ_top² / 2 = ∫_0^{G1} erf(a/√G) dG with a = p0/2, in closed form.
+fn top_variance_half(p0: f64, g1: f64) -> f64 {
+    if g1 <= 0.0 {
+        return 0.0;
+    }
+    let a = 0.5 * p0;
+    let u = a / g1.sqrt();
+    g1 * erf(u) + 2.0 * a * a / PI.sqrt() * ((-u * u).exp() / u - PI.sqrt() * erfc(u))
+}
+
+fn evaluate_on(
+    grid: &Grid,
+    graded: Option<&Graded>,
+    stack: &Stack,
+    p0: f64,
+    req: Request,
+    evaluations: usize,
+) -> Result<Contact, Error> {
+    let layers = &stack.layers;
+    let d = stack.thickness;
+    let e0 = layers.film.e_star();
+    let cg = 0.25 * PI * e0 * e0;
+    let n = grid.q.len();
+    let need_fg = req.interface();
+    let mut kern = vec![0.0; n];
+    let mut f2 = if req.sigma_interface {
+        vec![0.0; n]
+    } else {
+        vec![]
+    };
+    let mut g2 = if req.tau_interface {
+        vec![0.0; n]
+    } else {
+        vec![]
+    };
+    for j in 0..n {
+        let x = grid.q[j] * d;
+        if need_fg {
+            let r = layers.response(x);
+            kern[j] = 1.0 / (r.s * r.s);
+            if req.sigma_interface {
+                f2[j] = r.f * r.f;
+            }
+            if req.tau_interface {
+                g2[j] = r.g * r.g;
+            }
+        } else {
+            let s = layers.s(x);
+            kern[j] = 1.0 / (s * s);
+        }
+        if !kern[j].is_finite() {
+            return Err(Error::Numerical {
+                what: "layer response",
+                detail: format!("S(qd) = 0 at qd = {x:e}"),
+            });
+        }
+    }
+    let (g_sum, g_err) = grid.integrate(&kern);
+    let g1 = Estimate::new(cg * g_sum, cg * g_err, Termination::Converged);
+    let area = g1.map(
+        |g| contact_probability(p0, g),
+        |g| contact_probability_slope(p0, g),
+    );
+
+    // Low-octave share: G at 2 q_L over G1.
+    let low: f64 = (0..2 * grid.low_octave_panels)
+        .map(|j| grid.w[j] * grid.rho[j] * kern[j])
+        .sum();
+    let low_octave_share = if g_sum > 0.0 {
+        (low / g_sum).min(1.0)
+    } else {
+        1.0
+    };
+
+    let sigma_rms_top = req.sigma_top.then(|| {
+        let v = 2.0 * top_variance_half(p0, g1.value);
+        // d(σ²)/dG1 = 2 erf(p0/(2√G1)) = 2 P.
+        let dv = 2.0 * area.value * g1.err;
+        sqrt_estimate(v, dv + 8.0 * EPS * v, g1.status)
+    });
+
+    let (mut sigma_rms_interface, mut tau_rms_interface) = (None, None);
+    if let Some(graded) = graded {
+        let f: Vec<f64> = kern.iter().zip(&grid.rho).map(|(k, r)| k * r).collect();
+        // The start of the range, where P(G(u)) ∝ (u − u_L)^{-1/2}: graded panels.
+        let near = graded.integrate(layers, d, p0, cg, req);
+        // Then the two-node panels: G at every node from the running sum plus the partial integral.
+        let mut g_left = near.g_raw;
+        let mut g_left_err = near.g_raw_err;
+        let (mut sig, mut tau) = (near.sigma, near.tau);
+        for p in graded.base_from..grid.panels() {
+            let (j0, j1) = (2 * p, 2 * p + 1);
+            // Linear-interpolation error of the partial integral: |ψ''| Δ²/8 of the panel weight.
+            let start = j0.saturating_sub(1).min(n.saturating_sub(3));
+            let curv = if n >= 3 {
+                second_difference(&grid.u[start..start + 3], &f[start..start + 3]).abs()
+            } else {
+                0.0
+            };
+            let part_err = curv * grid.width[p].powi(2) / 8.0 * (grid.w[j0] + grid.w[j1]);
+            let mut pn = [0.0; 2];
+            let mut dpn = [0.0; 2];
+            for jj in 0..2 {
+                let gv =
+                    cg * (g_left + grid.partial[p][jj][0] * f[j0] + grid.partial[p][jj][1] * f[j1]);
+                pn[jj] = contact_probability(p0, gv);
+                dpn[jj] = contact_probability_slope(p0, gv) * cg * (g_left_err + part_err);
+            }
+            let dd4 = |psi: &dyn Fn(usize) -> f64| {
+                if n < 5 {
+                    return 0.0;
+                }
+                let s0 = (2 * p).saturating_sub(2).min(n - 5);
+                let vals: Vec<f64> = (s0..s0 + 5).map(psi).collect();
+                grid.err4[p]
+                    * ERR_SAFETY
+                    * (24.0 * divided_difference4(&grid.u[s0..s0 + 5], &vals)).abs()
+            };
+            // P at the neighbours' nodes for the divided differences: reuse this panel's values
+            // for its own nodes and the node values recorded so far otherwise.
+            let add = |acc: &mut (f64, f64), k2: &[f64]| {
+                let v = grid.w[j0] * f[j0] * pn[0] * k2[j0] + grid.w[j1] * f[j1] * pn[1] * k2[j1];
+                let dp =
+                    grid.w[j0] * f[j0] * k2[j0] * dpn[0] + grid.w[j1] * f[j1] * k2[j1] * dpn[1];
+                let e = dd4(&|j: usize| {
+                    f[j] * k2[j]
+                        * if j == j0 {
+                            pn[0]
+                        } else if j == j1 {
+                            pn[1]
+                        } else {
+                            contact_probability(p0, cg * g_at(grid, &f, j, g_left, p))
+                        }
+                });
+                acc.0 += v;
+                acc.1 += dp + e + 8.0 * EPS * v.abs();
+            };
+            if req.sigma_interface {
+                add(&mut sig, &f2);
+            }
+            if req.tau_interface {
+                add(&mut tau, &g2);
+            }
+            g_left += grid.w[j0] * f[j0] + grid.w[j1] * f[j1];
+            g_left_err += dd4(&|j: usize| f[j]);
+        }
+        if req.sigma_interface {
+            sigma_rms_interface = Some(sqrt_estimate(
+                2.0 * cg * sig.0,
+                2.0 * cg * sig.1,
+                Termination::Converged,
+            ));
+        }
+        if req.tau_interface {
+            tau_rms_interface = Some(sqrt_estimate(
+                2.0 * cg * tau.0,
+                2.0 * cg * tau.1,
+                Termination::Converged,
+            ));
+        }
+    }
+
+    let e_eff_over_e_film = req.e_eff.then(|| {
+        let ones = vec![1.0; n];
+        let (bare, bare_err) = grid.integrate(&ones);
+        let ratio = g_sum / bare;
+        let ratio_err = g_err / bare + ratio * bare_err / bare;
+        sqrt_estimate(ratio, ratio_err, Termination::Converged)
+    });
+
+    Ok(Contact {
+        thickness: d,
+        pressure: p0,
+        g1,
+        area_fraction: area,
+        sigma_rms_top,
+        sigma_rms_interface,
+        tau_rms_interface,
+        e_eff_over_e_film,
+        low_octave_share,
+        kernel_evaluations: evaluations,
+    })
+}
+
+/// G/cg at node j (of panel near `p`), from the running sum at panel p's left end; used only
+/// for the neighbours in the divided-difference error estimate (first order is enough there).
+fn g_at(grid: &Grid, f: &[f64], j: usize, g_left_p: f64, p: usize) -> f64 {
+    let q = j / 2;
+    let mut g = g_left_p;
+    if q < p {
+        for k in q..p {
+            g -= grid.w[2 * k] * f[2 * k] + grid.w[2 * k + 1] * f[2 * k + 1];
+        }
+    } else {
+        for k in p..q {
+            g += grid.w[2 * k] * f[2 * k] + grid.w[2 * k + 1] * f[2 * k + 1];
+        }
+    }
+    let jj = j % 2;
+    (g + grid.partial[q][jj][0] * f[2 * q] + grid.partial[q][jj][1] * f[2 * q + 1]).max(0.0)
+}
+
+/// Second divided difference f[u0, u1, u2] times 2 (≈ f'').
+fn second_difference(u: &[f64], f: &[f64]) -> f64 {
+    let d01 = (f[1] - f[0]) / (u[1] - u[0]);
+    let d12 = (f[2] - f[1]) / (u[2] - u[1]);
+    2.0 * (d12 - d01) / (u[2] - u[0])
+}
+
+/// √v with the error of v propagated (d√v = dv / (2√v)), bounded by √dv near v = 0.
+fn sqrt_estimate(v: f64, dv: f64, status: Termination) -> Estimate {
+    let s = v.max(0.0).sqrt();
+    let err = if s > 0.0 {
+        (dv / (2.0 * s)).min(dv.sqrt())
+    } else {
+        dv.sqrt()
+    };
+    Estimate::new(s, err + 4.0 * EPS * s, status)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Distributions (notes.md, "Distributions and peak values").
+
+/// Interface shear: Gaussian, zero mean, rms τ_rms; P(|τ| > level) = erfc(level/(√2 τ_rms)).
+pub fn tau_exceedance(tau_rms: f64, level: f64) -> f64 {
+    if tau_rms <= 0.0 {
+        if level < 0.0 { 1.0 } else { 0.0 }
+    } else {
+        erfc(level / (std::f64::consts::SQRT_2 * tau_rms))
+    }
+}
+
+/// The shear level exceeded on a fraction ε of the interface: √2 τ_rms erfc⁻¹(ε).
+/// statrs' erfc⁻¹ is good to ~1e-11; two Newton steps on erfc bring it to rounding.
+pub fn tau_peak(tau_rms: f64, epsilon: f64) -> f64 {
+    let mut x = erfc_inv(epsilon);
+    for _ in 0..2 {
+        let slope = -2.0 / PI.sqrt() * (-x * x).exp();
+        if slope == 0.0 {
+            break;
+        }
+        x -= (erfc(x) - epsilon) / slope;
+    }
+    std::f64::consts::SQRT_2 * tau_rms * x
+}
+
+/// Half-normal density of |τ| (normalised on [0, ∞)).
+pub fn tau_pdf(tau_rms: f64, tau: f64) -> f64 {
+    let s = tau_rms;
+    (2.0 / PI).sqrt() / s * (-0.5 * (tau / s).powi(2)).exp()
+}
+
+/// Normal stress: Persson's form centred at p0 with width σ_rms (4G → 2σ_rms²), restricted
+/// to σ ≥ 0 and normalised there. At the top surface σ_rms² = 2G(q1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NormalStress {
+    pub p0: f64,
+    pub sigma_rms: f64,
+}
+
+impl NormalStress {
+    fn scaled(&self, s: f64) -> (f64, f64, f64) {
+        let k = std::f64::consts::SQRT_2 * self.sigma_rms;
+        ((s - self.p0) / k, (s + self.p0) / k, self.p0 / k)
+    }
+
+    /// Density on σ ≥ 0: [e^{−(σ−p0)²/2σ²} − e^{−(σ+p0)²/2σ²}] / (√(2π) σ_rms erf(p0/(√2 σ_rms))).
+    pub fn pdf(&self, s: f64) -> f64 {
+        if s < 0.0 {
+            return 0.0;
+        }
+        let (a, b, delta) = self.scaled(s);
+        // e^{−a²} − e^{−b²} = e^{−a²}(1 − e^{−(b²−a²)}), b² − a² = 4 δ s/(√2 σ_rms) ≥ 0.
+        let diff = (-a * a).exp() * -(-(b * b - a * a)).exp_m1();
+        diff / ((2.0 * PI).sqrt() * self.sigma_rms * erf(delta))
+    }
+
+    /// Fraction of the area where the stress exceeds `level`.
+    pub fn exceedance(&self, level: f64) -> f64 {
+        if level <= 0.0 {
+            return 1.0;
+        }
+        let (a, b, delta) = self.scaled(level);
+        if delta < 1e-6 {
+            // p0 ≪ σ_rms: the ratio tends to e^{−c²}, c = level/(√2σ_rms), with relative
+            // corrections O(δ² c²).
+            let c = 0.5 * (a + b);
+            return (-c * c).exp();
+        }
+        ((erfc(a) - erfc(b)) / (2.0 * erf(delta))).clamp(0.0, 1.0)
+    }
+
+    /// The level exceeded on a fraction ε of the area, by bisection on the monotone tail to a
+    /// relative width of 1e-13.
+    pub fn peak(&self, epsilon: f64) -> Estimate {
+        let mut lo = 0.0;
+        let mut hi = self.p0 + self.sigma_rms;
+        while self.exceedance(hi) > epsilon {
+            lo = hi;
+            hi *= 2.0;
+        }
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if self.exceedance(mid) > epsilon {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo <= 1e-13 * hi {
+                break;
+            }
+        }
+        Estimate::new(
+            0.5 * (lo + hi),
+            (hi - lo) + 1e-12 * hi,
+            Termination::Converged,
+        )
     }
 }

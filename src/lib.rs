@@ -18,6 +18,7 @@ pub mod layer;
 pub mod prec;
 pub mod psd;
 pub mod quad;
+pub mod topography;
 pub mod units;
 
 pub use error::Error;

@@ -3,6 +3,9 @@
 
 use clap::{Parser, Subcommand};
 
+mod psd;
+mod synth;
+
 #[derive(Parser)]
 #[command(
     name = "coatcheck",
@@ -15,9 +18,24 @@ struct Cli {
 }
 
 #[derive(Subcommand)]
-enum Command {}
+enum Command {
+    /// Heights (line scans or a height map) → power spectrum C(q), with a summary.
+    Psd(psd::PsdArgs),
+    /// Write a synthetic self-affine surface (fixed seed) as a height map or line scans.
+    Synth(synth::SynthArgs),
+}
 
 pub fn run() -> i32 {
     let cli = Cli::parse();
-    match cli.command {}
+    let result = match cli.command {
+        Command::Psd(a) => psd::run(a),
+        Command::Synth(a) => synth::run(a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("coatcheck: {e}");
+            2
+        }
+    }
 }

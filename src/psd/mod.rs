@@ -13,6 +13,8 @@
 //! between the spectrum's own knots (its data points, q0, q_r, q1, or steps of Q/2 across the
 //! Gaussian band), so no feature of the data is smoothed away.
 
+pub mod read;
+
 use crate::error::Error;
 use crate::prec::{Estimate, Termination};
 use crate::quad;
@@ -94,7 +96,7 @@ impl Tabulated {
     pub fn restricted(&self, q_min: Option<f64>, q_max: Option<f64>) -> Result<Self, Error> {
         let lo = q_min.unwrap_or(self.q[0]).max(self.q[0]);
         let hi = q_max.unwrap_or(f64::INFINITY).min(*self.q.last().unwrap());
-        if !(lo < hi) {
+        if lo >= hi || lo.is_nan() || hi.is_nan() {
             return Err(Error::invalid(
                 "q range",
                 format!("[{lo}, {hi}]"),

@@ -1,1 +1,6 @@
 //! Integration tests: one binary, one module per area.
+mod contact;
+mod layer;
+mod psd_convert;
+mod psd_read;
+mod topography;

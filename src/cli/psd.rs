@@ -1,0 +1,305 @@
+//! `coatcheck psd FILE`: heights (line scans or a height map) → power spectrum.
+//!
+//! Writes `q (1/m), C (m^4)` (plus `C1D (m^3)` for line scans, on the same q) as CSV, through
+//! a temporary file and a rename, and prints the processing steps and a summary (h_rms, rms
+//! slope, rms curvature, kept q-range, share of h_rms² outside it).
+
+use coatcheck::Error;
+use coatcheck::topography::convert::Conversion;
+use coatcheck::topography::io::{self, HeightKind};
+use coatcheck::topography::spectrum::{Detrend, PsdOptions, TopographyPsd, Window};
+use coatcheck::topography::{HeightFileOptions, psd_of_file};
+use coatcheck::units::{Dim, parse_quantity};
+use comfy_table::Table;
+use std::io::Write;
+use std::path::PathBuf;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum KindArg {
+    /// Decide from the file: its metadata comment, a header line (line scans), --dx (line
+    /// scans) or --pixel-size (map).
+    Auto,
+    Lines,
+    Map,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum WindowArg {
+    Hann,
+    None,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum DetrendArg {
+    Mean,
+    Tilt,
+    Curvature,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ConversionArg {
+    /// Exact: inverse Abel transform of the 1D PSD.
+    InverseAbel,
+    /// C = C1D/(πq), exact only for H = 1.
+    PiQShortcut,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum FormatArg {
+    Table,
+    Csv,
+    Json,
+}
+
+/// Heights → PSD. Height units: --z-unit (default m, or the file's header or metadata).
+/// Exit code 0 on success; 2 on bad input, with one line on stderr naming the file and line,
+/// and no output file written.
+#[derive(Debug, clap::Args)]
+#[command(after_help = "Exit codes: 0 success, 2 bad input or a numerical failure.")]
+pub struct PsdArgs {
+    /// Line scans (`x,z…` columns, or `z…` with --dx) or a height map (CSV matrix).
+    pub file: PathBuf,
+    /// What the file holds.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub kind: KindArg,
+    /// Line scans: sample spacing (e.g. 0.5um) for files without an x column.
+    #[arg(long)]
+    pub dx: Option<String>,
+    /// Height map: pixel size (e.g. 1um), or the x size when --pixel-size-y differs.
+    #[arg(long)]
+    pub pixel_size: Option<String>,
+    /// Height map: pixel size along y (between lines), if different from x.
+    #[arg(long)]
+    pub pixel_size_y: Option<String>,
+    /// Unit of the heights (m, um, nm).
+    #[arg(long)]
+    pub z_unit: Option<String>,
+    /// Unit of the x column of line scans.
+    #[arg(long)]
+    pub x_unit: Option<String>,
+    /// The data are one period of a periodic surface (default window: none).
+    #[arg(long)]
+    pub periodic: bool,
+    /// Window (default: hann, or none for periodic data).
+    #[arg(long, value_enum)]
+    pub window: Option<WindowArg>,
+    /// Trend removed first (default: tilt, or mean for periodic data).
+    #[arg(long, value_enum)]
+    pub detrend: Option<DetrendArg>,
+    /// Log-spaced q bins per decade.
+    #[arg(long, default_value_t = 10)]
+    pub points_per_decade: usize,
+    /// Shortest wavelength kept, in pixels (2 = Nyquist).
+    #[arg(long, default_value_t = 4.0)]
+    pub cutoff_pixels: f64,
+    /// Line scans: how the 1D PSD becomes the 2D PSD.
+    #[arg(long, value_enum, default_value = "inverse-abel")]
+    pub conversion: ConversionArg,
+    /// Write the PSD as CSV here (atomically).
+    #[arg(long, short)]
+    pub output: Option<PathBuf>,
+    /// What to print: summary table, CSV, or one JSON object.
+    #[arg(long, value_enum, default_value = "table")]
+    pub format: FormatArg,
+}
+
+fn length(flag: &'static str, v: &Option<String>) -> Result<Option<f64>, Error> {
+    v.as_deref()
+        .map(|s| {
+            let x = parse_quantity(s, Dim::Length(1)).map_err(|e| {
+                Error::invalid(flag, format!("'{s}' ({e})"), "a length such as 0.5um")
+            })?;
+            if x.is_finite() && x > 0.0 {
+                Ok(x)
+            } else {
+                Err(Error::invalid(flag, s, "a length > 0"))
+            }
+        })
+        .transpose()
+}
+
+/// Run `coatcheck psd`; returns the exit code (0) or an error (exit code 2).
+pub fn run(a: PsdArgs) -> Result<i32, Error> {
+    let dx = length("--dx", &a.dx)?;
+    let px = length("--pixel-size", &a.pixel_size)?;
+    let py = length("--pixel-size-y", &a.pixel_size_y)?;
+    let periodic = a.periodic.then_some(true);
+    let opts = PsdOptions {
+        detrend: a.detrend.map(|d| match d {
+            DetrendArg::Mean => Detrend::Mean,
+            DetrendArg::Tilt => Detrend::Tilt,
+            DetrendArg::Curvature => Detrend::Curvature,
+        }),
+        window: a.window.map(|w| match w {
+            WindowArg::Hann => Window::Hann,
+            WindowArg::None => Window::None,
+        }),
+        points_per_decade: a.points_per_decade,
+        cutoff_pixels: a.cutoff_pixels,
+        conversion: match a.conversion {
+            ConversionArg::InverseAbel => Conversion::InverseAbel,
+            ConversionArg::PiQShortcut => Conversion::PiQShortcut,
+        },
+    };
+    let file = HeightFileOptions {
+        kind: match a.kind {
+            KindArg::Auto => None,
+            KindArg::Lines => Some(HeightKind::Lines),
+            KindArg::Map => Some(HeightKind::Map),
+        },
+        dx,
+        pixel_size: px,
+        pixel_size_y: py,
+        x_unit: a.x_unit.clone(),
+        z_unit: a.z_unit.clone(),
+        periodic,
+    };
+    let (kind, result) = psd_of_file(&a.file, &file, &opts)?;
+    let input = a.file.display().to_string();
+    if let Some(out) = &a.output {
+        io::write_atomic(out, |w| write_csv(w, &input, &result))?;
+    }
+    let mut stdout = std::io::stdout().lock();
+    let printed = match a.format {
+        FormatArg::Table => {
+            writeln!(
+                stdout,
+                "{}",
+                summary_table(&input, kind, &result, a.output.as_ref())
+            )
+        }
+        FormatArg::Csv => match &a.output {
+            None => write_csv(&mut stdout, &input, &result),
+            Some(_) => write_summary_csv(&mut stdout, &result),
+        },
+        FormatArg::Json => writeln!(stdout, "{}", json(&input, kind, &result)),
+    };
+    printed.map_err(|source| Error::Io {
+        path: PathBuf::from("<stdout>"),
+        source,
+    })?;
+    Ok(0)
+}
+
+fn write_csv(w: &mut dyn Write, input: &str, r: &TopographyPsd) -> std::io::Result<()> {
+    writeln!(w, "# coatcheck psd of {input}")?;
+    for s in &r.steps {
+        writeln!(w, "# {s}")?;
+    }
+    let s = r.summary;
+    writeln!(
+        w,
+        "# h_rms = {:e} m, rms slope = {:e}, rms curvature = {:e} 1/m, kept q = [{:e}, {:e}] 1/m, outside fraction of h_rms^2 = {:e}",
+        s.h_rms, s.rms_slope, s.rms_curvature, s.q_min, s.q_max, s.outside_fraction
+    )?;
+    match &r.c1d {
+        None => {
+            writeln!(w, "q (1/m),C (m^4)")?;
+            for (q, c) in r.c2d.q().iter().zip(r.c2d.c_values()) {
+                writeln!(w, "{q:e},{c:e}")?;
+            }
+        }
+        Some(c1d) => {
+            writeln!(w, "q (1/m),C (m^4),C1D (m^3)")?;
+            for ((q, c), c1) in r.c2d.q().iter().zip(r.c2d.c_values()).zip(c1d.c_values()) {
+                writeln!(w, "{q:e},{c:e},{c1:e}")?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn write_summary_csv(w: &mut dyn Write, r: &TopographyPsd) -> std::io::Result<()> {
+    let s = r.summary;
+    writeln!(w, "quantity,value,unit")?;
+    writeln!(w, "h_rms,{:e},m", s.h_rms)?;
+    writeln!(w, "h_rms_kept,{:e},m", s.h_rms_kept)?;
+    writeln!(w, "rms_slope,{:e},", s.rms_slope)?;
+    writeln!(w, "rms_curvature,{:e},1/m", s.rms_curvature)?;
+    writeln!(w, "q_min,{:e},1/m", s.q_min)?;
+    writeln!(w, "q_max,{:e},1/m", s.q_max)?;
+    writeln!(w, "outside_fraction,{:e},", s.outside_fraction)
+}
+
+/// A length in a readable unit, 4 significant digits.
+fn human_length(m: f64) -> String {
+    let (v, u) = if m >= 1e-3 {
+        (m * 1e3, "mm")
+    } else if m >= 1e-6 {
+        (m * 1e6, "µm")
+    } else {
+        (m * 1e9, "nm")
+    };
+    format!("{v:.4} {u}")
+}
+
+fn summary_table(
+    input: &str,
+    kind: HeightKind,
+    r: &TopographyPsd,
+    out: Option<&PathBuf>,
+) -> String {
+    let s = r.summary;
+    let mut steps = Table::new();
+    steps.set_header(vec!["step"]);
+    for st in &r.steps {
+        steps.add_row(vec![st.clone()]);
+    }
+    let mut t = Table::new();
+    t.set_header(vec!["quantity", "value"]);
+    t.add_row(vec![
+        "input".to_string(),
+        format!(
+            "{input} ({})",
+            if kind == HeightKind::Map {
+                "height map"
+            } else {
+                "line scans"
+            }
+        ),
+    ]);
+    t.add_row(vec![
+        "h_rms (all wavelengths)".into(),
+        human_length(s.h_rms),
+    ]);
+    t.add_row(vec![
+        "h_rms (kept q-range)".into(),
+        human_length(s.h_rms_kept),
+    ]);
+    t.add_row(vec![
+        "rms slope (kept)".into(),
+        format!("{:.4}", s.rms_slope),
+    ]);
+    t.add_row(vec![
+        "rms curvature (kept)".into(),
+        format!("{:.4} 1/µm", s.rms_curvature * 1e-6),
+    ]);
+    t.add_row(vec![
+        "kept q-range".into(),
+        format!("{:.4e} – {:.4e} 1/m", s.q_min, s.q_max),
+    ]);
+    t.add_row(vec![
+        "share of h_rms² outside".into(),
+        format!("{:.3} %", 100.0 * s.outside_fraction),
+    ]);
+    t.add_row(vec![
+        "PSD points".into(),
+        match out {
+            Some(p) => format!("{} (written to {})", r.c2d.q().len(), p.display()),
+            None => format!("{} (use --output FILE to save them)", r.c2d.q().len()),
+        },
+    ]);
+    format!("{steps}\n{t}")
+}
+
+fn json(input: &str, kind: HeightKind, r: &TopographyPsd) -> serde_json::Value {
+    serde_json::json!({
+        "input": input,
+        "kind": if kind == HeightKind::Map { "map" } else { "lines" },
+        "steps": r.steps,
+        "summary": r.summary,
+        "q": r.c2d.q(),
+        "c": r.c2d.c_values(),
+        "c1d": r.c1d.as_ref().map(|t| t.c_values()),
+    })
+}

@@ -1,0 +1,137 @@
+//! `coatcheck synth`: a synthetic self-affine surface (fixed seed) as a height-map CSV, or some
+//! of its rows as line scans.
+
+use coatcheck::Error;
+use coatcheck::topography::Profile;
+use coatcheck::topography::io::{write_height_map, write_profile};
+use coatcheck::topography::synth::{Amplitude, SynthSpec, self_affine_map};
+use coatcheck::units::{Dim, parse_quantity};
+use std::path::PathBuf;
+
+/// Generate a periodic self-affine surface with random phases and a known PSD:
+/// C = C0 below q0, C0 (q/q0)^(−2(1+H)) up to q1, 0 above.
+#[derive(Debug, clap::Args)]
+pub struct SynthArgs {
+    /// Pixels per side.
+    #[arg(long, default_value_t = 256)]
+    pub n: usize,
+    /// Pixel size (e.g. 1um).
+    #[arg(long)]
+    pub pixel_size: String,
+    /// Hurst exponent, 0 < H <= 1.
+    #[arg(long, default_value_t = 0.8)]
+    pub hurst: f64,
+    /// Roll-off wavenumber (e.g. 1e5 1/m, or 0.1 1/um).
+    #[arg(long)]
+    pub q0: String,
+    /// Short-wavelength cut-off wavenumber.
+    #[arg(long)]
+    pub q1: String,
+    /// rms height (e.g. 1um); or give --rms-slope.
+    #[arg(
+        long,
+        conflicts_with = "rms_slope",
+        required_unless_present = "rms_slope"
+    )]
+    pub rms_height: Option<String>,
+    /// rms slope.
+    #[arg(long)]
+    pub rms_slope: Option<f64>,
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Write K rows, spread evenly over the map, as line scans (`x, z1..zK`) instead of the map.
+    #[arg(long)]
+    pub line_scans: Option<usize>,
+    /// Output CSV file (written atomically).
+    #[arg(long, short)]
+    pub output: PathBuf,
+}
+
+fn quantity(flag: &'static str, s: &str, dim: Dim, expected: &'static str) -> Result<f64, Error> {
+    parse_quantity(s, dim).map_err(|e| Error::invalid(flag, format!("'{s}' ({e})"), expected))
+}
+
+/// Run `coatcheck synth`; returns the exit code (0) or an error (exit code 2).
+pub fn run(a: SynthArgs) -> Result<i32, Error> {
+    let amplitude = match (&a.rms_height, a.rms_slope) {
+        (Some(h), _) => Amplitude::RmsHeight(quantity(
+            "--rms-height",
+            h,
+            Dim::Length(1),
+            "a length such as 1um",
+        )?),
+        (None, Some(x)) => Amplitude::RmsSlope(x),
+        (None, None) => {
+            return Err(Error::invalid(
+                "amplitude",
+                "none",
+                "--rms-height or --rms-slope",
+            ));
+        }
+    };
+    let spec = SynthSpec {
+        n: a.n,
+        dx: quantity(
+            "--pixel-size",
+            &a.pixel_size,
+            Dim::Length(1),
+            "a length such as 1um",
+        )?,
+        hurst: a.hurst,
+        q0: quantity(
+            "--q0",
+            &a.q0,
+            Dim::Length(-1),
+            "a wavenumber such as 1e5 1/m",
+        )?,
+        q1: quantity(
+            "--q1",
+            &a.q1,
+            Dim::Length(-1),
+            "a wavenumber such as 1e7 1/m",
+        )?,
+        amplitude,
+        seed: a.seed,
+    };
+    let map = self_affine_map(&spec)?;
+    let note = format!(
+        "synth: self-affine, H = {}, q0 = {:e} 1/m, q1 = {:e} 1/m, C0 = {:e} m^4, seed = {}",
+        spec.hurst,
+        spec.q0,
+        spec.q1,
+        spec.c0(),
+        spec.seed
+    );
+    let what = match a.line_scans {
+        Some(k) => {
+            if k == 0 || k > map.ny {
+                return Err(Error::invalid(
+                    "--line-scans",
+                    k,
+                    "between 1 and the number of rows n",
+                ));
+            }
+            let p = Profile {
+                dx: map.dx,
+                // Rows spread evenly over the map, so that the scans are nearly independent.
+                scans: (0..k).map(|j| map.row(j * map.ny / k).to_vec()).collect(),
+                periodic: true,
+            };
+            write_profile(&a.output, &p, std::slice::from_ref(&note))?;
+            format!("{k} line scans of {} points, rows of", map.nx)
+        }
+        None => {
+            write_height_map(&a.output, &map, std::slice::from_ref(&note))?;
+            "the height map".to_string()
+        }
+    };
+    println!(
+        "wrote {what} a {} x {} map of {:e} m pixels (rms height {:e} m) to {}\n{note}",
+        map.nx,
+        map.ny,
+        map.dx,
+        map.rms(),
+        a.output.display()
+    );
+    Ok(0)
+}

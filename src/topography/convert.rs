@@ -1,0 +1,363 @@
+//! One- and two-dimensional power spectra of an isotropic surface: the exact Abel pair.
+//!
+//! Conventions (used everywhere in `coatcheck`):
+//! - 2D PSD (m^4, notes.md and paper eq. A2): C(q) = (2π)^−2 ∫d²x ⟨h(x)h(0)⟩ e^{−iq·x}, so
+//!   h_rms² = ∫d²q C = 2π∫_0^∞ q C(q) dq.
+//! - 1D PSD of a line scan (m^3), **one-sided**: C1D(q) = π^−1 ∫dx ⟨h(x)h(0)⟩ e^{−iqx} for q ≥ 0,
+//!   so h_rms² = ∫_0^∞ C1D(q) dq (twice the two-sided (2π)^−1 convention, which integrates
+//!   over −∞ < q < ∞).
+//!
+//! For an isotropic surface a line scan sees the 2D spectrum integrated across the scan
+//! direction, C1D(q) = 2∫_{−∞}^{∞} C(√(q² + k_y²)) dk_y, i.e. twice the forward Abel transform:
+//!
+//!   C1D(q) = 4 ∫_q^∞ k C(k) / √(k² − q²) dk,                                (forward)
+//!   C(k)   = −(1/2π) ∫_k^∞ C1D′(q) / √(q² − k²) dq.                          (inverse)
+//!
+//! Both kernels have an integrable inverse-square-root singularity at the lower end. The
+//! substitution k = q cosh u (forward) or q = k cosh u (inverse) removes it exactly:
+//! dk/√(k² − q²) = du, leaving smooth integrands that 10- and 5-point Gauss–Legendre rules
+//! integrate on panels no wider than 0.25 in u, split at the data's knots (the difference of
+//! the two rules is the error estimate). In the inverse transform, data segments more than a
+//! factor 2 above k see a smooth kernel; they are integrated in ln q on fixed nodes shared by
+//! all k, which makes the O(n²) conversion cheap.
+//!
+//! Tabulated C1D enters through its derivative, so it is interpolated smoothly: ln C1D as a
+//! piecewise cubic Hermite polynomial in ln q with second-order three-point knot slopes (a
+//! piecewise power law would make C1D′ jump at every point, and the singular kernel turns such
+//! jumps into O(h^1.5) errors; the cubic gives O(h^3)-accurate derivatives).
+//! Beyond the last point the inverse transform needs C1D to go on: it is continued as the power
+//! law q^s fitted (least squares, log–log) to the points in the last octave, which must fall
+//! faster than 1/q (s < −1, a finite h_rms²). C near the last octave depends on that
+//! assumption; the reader says so in a warning.
+//!
+//! The shortcut C(q) ≈ C1D(q)/(πq) ([`Conversion::PiQShortcut`]) is exact only for a pure
+//! power law with H = 1; in general C1D/(πq C) = 2Γ(H + ½)/(√π Γ(H + 1)), which is 4/π
+//! (27 % too high a C) for H = 0.5. It is offered only as a named option.
+
+use crate::error::Error;
+use crate::prec::{EPS, Estimate, Termination};
+use crate::psd::{Spectrum, Tabulated};
+use crate::quad;
+use rayon::prelude::*;
+use std::f64::consts::PI;
+
+/// Widest panel (in u) integrated with one pair of Gauss–Legendre rules.
+const PANEL: f64 = 0.25;
+
+/// How a 1D PSD is turned into the isotropic 2D PSD.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Conversion {
+    /// The exact relation: inverse Abel transform of C1D (default).
+    #[default]
+    InverseAbel,
+    /// C = C1D/(πq): exact only for a power law with H = 1 (see the module docs).
+    PiQShortcut,
+}
+
+/// ∫ f over consecutive `breaks` (each interval split into panels no wider than `width`):
+/// returns (10-point value, |10-point − 5-point|, Σ|panel values|).
+fn integrate(breaks: &[f64], width: f64, f: impl Fn(f64) -> f64) -> (f64, f64, f64) {
+    let (x10, w10) = quad::gl10();
+    let (x5, w5) = quad::gl5();
+    let (mut hi, mut diff, mut abs) = (0.0, 0.0, 0.0);
+    for pair in breaks.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        if b <= a {
+            continue;
+        }
+        let n = ((b - a) / width).ceil().max(1.0) as usize;
+        let h = (b - a) / n as f64;
+        for p in 0..n {
+            let mid = a + (p as f64 + 0.5) * h;
+            let g = |x: f64| f(mid + 0.5 * h * x);
+            let v10: f64 = x10.iter().zip(w10).map(|(&x, &w)| w * g(x)).sum::<f64>() * 0.5 * h;
+            let v5: f64 = x5.iter().zip(w5).map(|(&x, &w)| w * g(x)).sum::<f64>() * 0.5 * h;
+            hi += v10;
+            diff += (v10 - v5).abs();
+            abs += v10.abs();
+        }
+    }
+    (hi, diff, abs)
+}
+
+fn estimate(value: f64, diff: f64, abs: f64, panels: usize) -> Estimate {
+    Estimate::new(
+        value,
+        diff + 16.0 * EPS * abs * panels.max(1) as f64,
+        Termination::Converged,
+    )
+}
+
+/// Forward transform: C1D(q) = 4∫_q^∞ k C(k)/√(k² − q²) dk for a 2D PSD `c` that is zero
+/// outside [knots[0], knots[last]] and smooth between consecutive knots (sorted, > 0).
+pub fn c1d_at(c: impl Fn(f64) -> f64, knots: &[f64], q: f64) -> Estimate {
+    let (Some(&lo), Some(&hi)) = (knots.first(), knots.last()) else {
+        return Estimate::exact(0.0);
+    };
+    if !(q > 0.0 && q < hi) {
+        return Estimate::exact(0.0);
+    }
+    let mut breaks = vec![(lo.max(q) / q).acosh()];
+    breaks.extend(
+        knots
+            .iter()
+            .filter(|&&k| k > lo.max(q))
+            .map(|&k| (k / q).acosh()),
+    );
+    let (v, d, a) = integrate(&breaks, PANEL, |u| {
+        let k = q * u.cosh();
+        k * c(k)
+    });
+    estimate(4.0 * v, 4.0 * d, 4.0 * a, breaks.len())
+}
+
+/// Forward transform of a [`Spectrum`]: its one-sided 1D PSD at `q` (m^3).
+pub fn c1d_of_spectrum(spectrum: &Spectrum, q: f64) -> Estimate {
+    c1d_at(|k| spectrum.c(k), &spectrum.knots(), q)
+}
+
+/// A 2D PSD converted from a 1D PSD, point by point at the input's q (not yet validated:
+/// noisy or inconsistent data can give C ≤ 0 somewhere; [`Converted::into_tabulated`] checks).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Converted {
+    pub q: Vec<f64>,
+    /// C(q) in m^4 with the quadrature error of each point.
+    pub c: Vec<Estimate>,
+    pub method: Conversion,
+    /// The power-law exponent s of the tail C1D ∝ q^s assumed beyond the data (inverse Abel).
+    pub tail_exponent: Option<f64>,
+}
+
+impl Converted {
+    /// The largest relative quadrature error over the points.
+    pub fn max_rel_err(&self) -> f64 {
+        self.c.iter().map(|e| e.rel_err()).fold(0.0, f64::max)
+    }
+
+    /// Validate into a [`Tabulated`] spectrum (errors name the point index).
+    pub fn into_tabulated(self) -> Result<Tabulated, Error> {
+        Tabulated::new(self.q, self.c.iter().map(|e| e.value).collect())
+    }
+}
+
+/// The exponent s of the power-law tail C1D ∝ q^s: a log–log least-squares fit to the points
+/// with q ≥ q_last/2 (at least the last two).
+pub fn tail_exponent(q: &[f64], c1d: &[f64]) -> f64 {
+    let n = q.len();
+    let q_last = q[n - 1];
+    let first = q
+        .iter()
+        .position(|&x| x >= 0.5 * q_last)
+        .unwrap_or(n - 2)
+        .min(n - 2);
+    let pts: Vec<(f64, f64)> = (first..n)
+        .map(|i| ((q[i] / q_last).ln(), c1d[i].ln()))
+        .collect();
+    let m = pts.len() as f64;
+    let (sx, sy) = pts
+        .iter()
+        .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x, b + y));
+    let (mx, my) = (sx / m, sy / m);
+    let (sxy, sxx) = pts.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
+        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
+    });
+    sxy / sxx
+}
+
+/// Convert a tabulated one-sided 1D PSD (q in 1/m, C1D in m^3; validated like
+/// [`Tabulated::new`]) to the isotropic 2D PSD at the same q.
+pub fn c2d_from_c1d(q: &[f64], c1d: &[f64], method: Conversion) -> Result<Converted, Error> {
+    let t = Tabulated::new(q.to_vec(), c1d.to_vec())?;
+    let (q, f) = (t.q(), t.c_values());
+    match method {
+        Conversion::PiQShortcut => Ok(Converted {
+            q: q.to_vec(),
+            c: q.iter()
+                .zip(f)
+                .map(|(&qi, &fi)| Estimate::exact(fi / (PI * qi)))
+                .collect(),
+            method,
+            tail_exponent: None,
+        }),
+        Conversion::InverseAbel => {
+            let n = q.len();
+            let s_tail = tail_exponent(q, f);
+            if s_tail.is_nan() || s_tail >= -1.0 {
+                return Err(Error::invalid(
+                    "1D PSD high-q tail",
+                    format!(
+                        "C1D ∝ q^{s_tail:.3} over the last octave (q ≥ {:.4e} 1/m)",
+                        0.5 * q[n - 1]
+                    ),
+                    "C1D falling faster than 1/q at its high-q end (cut any noise floor off with a q_max)",
+                ));
+            }
+            let x: Vec<f64> = q.iter().map(|v| v.ln()).collect();
+            let y: Vec<f64> = f.iter().map(|v| v.ln()).collect();
+            let m = hermite_slopes(&x, &y);
+            let far = far_segments(&x, &y, &m);
+            // O(n²) work in all (each point integrates over all points above it): in parallel.
+            let c = (0..n)
+                .into_par_iter()
+                .map(|j| inverse_at(&x, &y, &m, &far, s_tail, j))
+                .collect();
+            Ok(Converted {
+                q: q.to_vec(),
+                c,
+                method,
+                tail_exponent: Some(s_tail),
+            })
+        }
+    }
+}
+
+/// Knot slopes dy/dx of the piecewise cubic Hermite interpolant of (x, y) = (ln q, ln C1D):
+/// three-point (second-order) differences, one-sided at the ends.
+fn hermite_slopes(x: &[f64], y: &[f64]) -> Vec<f64> {
+    let n = x.len();
+    let d: Vec<f64> = (0..n - 1)
+        .map(|i| (y[i + 1] - y[i]) / (x[i + 1] - x[i]))
+        .collect();
+    if n == 2 {
+        return vec![d[0], d[0]];
+    }
+    let h = |i: usize| x[i + 1] - x[i];
+    let mut m = vec![0.0; n];
+    for i in 1..n - 1 {
+        m[i] = (h(i) * d[i - 1] + h(i - 1) * d[i]) / (h(i - 1) + h(i));
+    }
+    m[0] = ((2.0 * h(0) + h(1)) * d[0] - h(0) * d[1]) / (h(0) + h(1));
+    let (a, b) = (h(n - 2), h(n - 3));
+    m[n - 1] = ((2.0 * a + b) * d[n - 2] - a * d[n - 3]) / (a + b);
+    m
+}
+
+/// P and P′ of the cubic Hermite interpolant on segment i at ln q.
+fn hermite(x: &[f64], y: &[f64], m: &[f64], i: usize, lnq: f64) -> (f64, f64) {
+    let h = x[i + 1] - x[i];
+    let t = (lnq - x[i]) / h;
+    let (t2, t3) = (t * t, t * t * t);
+    let p = (2.0 * t3 - 3.0 * t2 + 1.0) * y[i]
+        + (t3 - 2.0 * t2 + t) * h * m[i]
+        + (-2.0 * t3 + 3.0 * t2) * y[i + 1]
+        + (t3 - t2) * h * m[i + 1];
+    let dp = ((6.0 * t2 - 6.0 * t) * (y[i] - y[i + 1])) / h
+        + (3.0 * t2 - 4.0 * t + 1.0) * m[i]
+        + (3.0 * t2 - 2.0 * t) * m[i + 1];
+    (p, dp)
+}
+
+/// Quadrature nodes of one data segment in ln q, used where the segment lies at q ≥ 2k: there
+/// the kernel 1/√(q² − k²) is smooth, so fixed nodes serve every k. Per node: q² and the
+/// weight times q·dC1D/dq = C1D·P′, for the 10- and the 5-point rule (panels ≤ 0.25 in ln q).
+struct FarSegment {
+    q2_10: Vec<f64>,
+    g10: Vec<f64>,
+    q2_5: Vec<f64>,
+    g5: Vec<f64>,
+}
+
+/// Nearest distance in ln q between k and a segment integrated with [`FarSegment`] nodes.
+const FAR: f64 = std::f64::consts::LN_2;
+
+fn far_segments(x: &[f64], y: &[f64], m: &[f64]) -> Vec<FarSegment> {
+    let (x10, w10) = quad::gl10();
+    let (x5, w5) = quad::gl5();
+    (0..x.len() - 1)
+        .map(|i| {
+            let (a, b) = (x[i], x[i + 1]);
+            let panels = ((b - a) / PANEL).ceil().max(1.0) as usize;
+            let h = (b - a) / panels as f64;
+            let mut seg = FarSegment {
+                q2_10: Vec::new(),
+                g10: Vec::new(),
+                q2_5: Vec::new(),
+                g5: Vec::new(),
+            };
+            for p in 0..panels {
+                let mid = a + (p as f64 + 0.5) * h;
+                for (xs, ws, q2, g) in [
+                    (x10, w10, &mut seg.q2_10, &mut seg.g10),
+                    (x5, w5, &mut seg.q2_5, &mut seg.g5),
+                ] {
+                    for (&xn, &wn) in xs.iter().zip(ws) {
+                        let lnq = mid + 0.5 * h * xn;
+                        let (pv, dp) = hermite(x, y, m, i, lnq);
+                        q2.push((2.0 * lnq).exp());
+                        g.push(0.5 * h * wn * pv.exp() * dp);
+                    }
+                }
+            }
+            seg
+        })
+        .collect()
+}
+
+/// C(k) at k = q[j] by the inverse Abel transform of C1D = exp(P(ln q)), P the cubic Hermite
+/// interpolant of the knots (x, y) = (ln q, ln C1D) with slopes m, continued beyond the last
+/// knot as the power law q^s_tail. Segments within a factor 2 of k are integrated in
+/// u = acosh(q/k) (singularity removed), those beyond with the fixed nodes of `far`.
+fn inverse_at(
+    x: &[f64],
+    y: &[f64],
+    m: &[f64],
+    far: &[FarSegment],
+    s_tail: f64,
+    j: usize,
+) -> Estimate {
+    let n = x.len();
+    let lnk = x[j];
+    let k2 = (2.0 * lnk).exp();
+    let (mut v, mut d, mut a, mut panels) = (0.0, 0.0, 0.0, 0);
+    for i in j..n - 1 {
+        panels += 1;
+        if x[i] - lnk >= FAR {
+            let f = &far[i];
+            let s10: f64 = f
+                .q2_10
+                .iter()
+                .zip(&f.g10)
+                .map(|(q2, g)| g / (q2 - k2).sqrt())
+                .sum();
+            let s5: f64 = f
+                .q2_5
+                .iter()
+                .zip(&f.g5)
+                .map(|(q2, g)| g / (q2 - k2).sqrt())
+                .sum();
+            v += s10;
+            d += (s10 - s5).abs();
+            a += s10.abs();
+            continue;
+        }
+        let breaks = [
+            (x[i].max(lnk) - lnk).exp().acosh(),
+            (x[i + 1] - lnk).exp().acosh(),
+        ];
+        // dC1D/dq = C1D(q) P'(ln q)/q, written in u with ln q = ln k + ln cosh u.
+        let (vi, di, ai) = integrate(&breaks, PANEL, |u| {
+            let lnq = lnk + u.cosh().ln();
+            let (p, dp) = hermite(x, y, m, i, lnq);
+            (p - lnq).exp() * dp
+        });
+        v += vi;
+        d += di;
+        a += ai;
+    }
+    // Tail: the integrand falls like e^{(s−1)u}; 42 e-folds leave < 1e-18 of it.
+    let (xn, yn) = (x[n - 1], y[n - 1]);
+    let u0 = (xn - lnk).exp().acosh();
+    let width = PANEL.min(1.0 / (1.0 - s_tail));
+    let u1 = u0 + 42.0 / (1.0 - s_tail);
+    let (vt, dt, at) = integrate(&[u0, u1], width, |u| {
+        let lnq = lnk + u.cosh().ln();
+        s_tail * (yn + s_tail * (lnq - xn) - lnq).exp()
+    });
+    v += vt;
+    d += dt;
+    a += at;
+    panels += 1;
+    let scale = 1.0 / (2.0 * PI);
+    estimate(-scale * v, scale * d, scale * a, panels)
+}
