@@ -35,13 +35,12 @@
 //! The interface normal stress is reported compression-positive, σ_n(q) = f(qd) p(q) (mean p0).
 //! |τ| is what is compared with the bond strength.
 
-pub mod synth;
-
 mod fft;
 
 use crate::error::Error;
 use crate::layer::Stack;
 use crate::prec::{EPS, Estimate, Termination};
+use crate::topography::HeightMap;
 use fft::Fft2;
 use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
@@ -93,6 +92,12 @@ impl Surface {
             dx,
             dy,
         })
+    }
+
+    /// The heights of a map read or synthesised by [`crate::topography`] (treated as one
+    /// period of a periodic surface, as the solver requires).
+    pub fn from_height_map(map: &HeightMap) -> Result<Self, Error> {
+        Self::new(map.z.clone(), map.nx, map.ny, map.dx, map.dy)
     }
 
     /// Number of grid points.
@@ -327,7 +332,7 @@ impl InterfaceFields {
 }
 
 /// Grid wavenumbers: qx for kx in 0..=nx/2, qy for ky in 0..ny (wrap-around order), in 1/m.
-pub(crate) fn wavenumbers(nx: usize, ny: usize, dx: f64, dy: f64) -> (Vec<f64>, Vec<f64>) {
+fn wavenumbers(nx: usize, ny: usize, dx: f64, dy: f64) -> (Vec<f64>, Vec<f64>) {
     let qx = (0..nx / 2 + 1)
         .map(|k| 2.0 * PI * k as f64 / (nx as f64 * dx))
         .collect();
@@ -706,4 +711,56 @@ where
         shear_x,
         shear_y,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn field_stats_nearest_rank_quantiles() {
+        // 1..=1000: the nearest-rank quantile at P is the ⌈P·n⌉-th value.
+        let v: Vec<f64> = (1..=1000).rev().map(f64::from).collect();
+        let s = FieldStats::of(&v);
+        assert_eq!(s.samples, 1000);
+        assert_eq!(s.quantile(0.5), Some(500.0));
+        assert_eq!(s.quantile(0.9), Some(900.0));
+        assert_eq!(s.quantile(0.99), Some(990.0));
+        assert_eq!(s.quantile(0.999), Some(999.0));
+        assert_eq!(s.max, 1000.0);
+        assert!((s.mean - 500.5).abs() < 1e-12);
+        // Variance of 1..n is (n² − 1)/12.
+        assert!((s.rms_dev - ((1e6 - 1.0) / 12.0f64).sqrt()).abs() < 1e-9);
+        assert!(FieldStats::of(&[]).mean.is_nan());
+    }
+
+    #[test]
+    fn surface_rejects_bad_input_and_measures_a_sinusoid() {
+        assert!(Surface::new(vec![0.0; 5], 2, 2, 1.0, 1.0).is_err());
+        assert!(Surface::new(vec![0.0; 4], 2, 2, 0.0, 1.0).is_err());
+        assert!(Surface::new(vec![0.0, f64::NAN, 0.0, 0.0], 2, 2, 1.0, 1.0).is_err());
+        // h = a cos(2π·3x/L) sin(2π·2y/L): h_rms = a/2, slope² = a²(q1² + q2²)/4.
+        let (n, l, a) = (24, 2.0, 0.1);
+        let h = (0..n * n)
+            .map(|i| {
+                let (x, y) = ((i % n) as f64 / n as f64, (i / n) as f64 / n as f64);
+                a * (2.0 * PI * 3.0 * x).cos() * (2.0 * PI * 2.0 * y).sin()
+            })
+            .collect();
+        let s = Surface::new(h, n, n, l / n as f64, l / n as f64).unwrap();
+        assert!((s.h_rms() - a / 2.0).abs() < 1e-15);
+        let (q1, q2) = (2.0 * PI * 3.0 / l, 2.0 * PI * 2.0 / l);
+        let want = a * ((q1 * q1 + q2 * q2) / 4.0).sqrt();
+        assert!((s.rms_slope() - want).abs() < 1e-13 * want);
+    }
+
+    #[test]
+    fn flat_surface_is_in_full_contact_at_the_nominal_pressure() {
+        let s = Surface::new(vec![1e-6; 16], 4, 4, 1e-6, 1e-6).unwrap();
+        let sol = solve_with_compliance(&s, |q| 2.0 / q, 5.0, &BemSettings::default()).unwrap();
+        assert_eq!(sol.convergence.status, Termination::Converged);
+        assert_eq!(sol.convergence.iterations, 0);
+        assert!(sol.pressure.iter().all(|&p| p == 5.0));
+        assert_eq!(sol.area_fraction.value, 1.0);
+    }
 }

@@ -1,4 +1,5 @@
 //! Integration tests: one binary, one module per area.
+mod bem;
 mod contact;
 mod layer;
 mod psd_convert;
