@@ -105,7 +105,7 @@ impl Fft2 {
                     }
                 },
             );
-        let (nx, even) = (self.nx, self.nx % 2 == 0);
+        let (nx, even) = (self.nx, self.nx.is_multiple_of(2));
         let strips = &self.strips;
         let row_inv = &self.row_inv;
         let per_task = rows_per_chunk(nx);

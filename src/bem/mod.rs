@@ -351,7 +351,7 @@ fn wavenumbers(nx: usize, ny: usize, dx: f64, dy: f64) -> (Vec<f64>, Vec<f64>) {
 
 /// Weight of half-spectrum column kx in a sum over the full spectrum of a real field.
 fn half_spectrum_weight(kx: usize, nx: usize) -> f64 {
-    if kx == 0 || (nx % 2 == 0 && kx == nx / 2) {
+    if kx == 0 || (nx.is_multiple_of(2) && kx == nx / 2) {
         1.0
     } else {
         2.0
@@ -502,7 +502,7 @@ where
             .filter(|(_, pi)| **pi > 0.0)
             .map(|((ri, ti), _)| ri * (ti - tbar))
             .sum();
-        if !(den > 0.0) {
+        if den.is_nan() || den <= 0.0 {
             return Err(Error::Numerical {
                 what: "boundary-element contact",
                 detail: format!(
@@ -668,8 +668,8 @@ where
     let inv_n = 1.0 / n as f64;
     // Odd (derivative-like) operators cannot be represented on a Nyquist mode of a real field:
     // the shear's component along an axis is set to zero on that axis's Nyquist wavenumber.
-    let nyq_x = (nx % 2 == 0).then_some(nx / 2);
-    let nyq_y = (ny % 2 == 0).then_some(ny / 2);
+    let nyq_x = nx.is_multiple_of(2).then_some(nx / 2);
+    let nyq_y = ny.is_multiple_of(2).then_some(ny / 2);
     let p = &solution.pressure;
     let mut normal = vec![0.0; n];
     plan.filter(p, &mut normal, |kx, col| {

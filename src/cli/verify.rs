@@ -19,7 +19,7 @@ use coatcheck::units::{Dim, parse_quantity};
 use comfy_table::Table;
 use serde_json::{Value, json};
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum FormatArg {
@@ -430,7 +430,7 @@ fn print_table(
 }
 
 fn write_fields(
-    path: &PathBuf,
+    path: &Path,
     s: &Surface,
     sol: &BemSolution,
     f: &InterfaceFields,

@@ -399,3 +399,98 @@ fn identical_materials_are_the_half_space() {
     }
     assert!(layered.shear_stats.rms > 0.0);
 }
+
+fn verify(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_coatcheck"))
+        .arg("verify")
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn cli_verify_reports_json_writes_fields_and_maps_exit_codes() {
+    let dir = std::env::temp_dir().join(format!("coatcheck-bem-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A 16 x 8 map of one sinusoid along x, heights in µm, pixel size from the flag.
+    let map = dir.join("map.csv");
+    let (nx, ny, a_um, pixel) = (16usize, 8usize, 0.1, 1e-6);
+    let mut text = String::from("# a sinusoid\n");
+    for _ in 0..ny {
+        let row: Vec<String> = (0..nx)
+            .map(|i| format!("{}", a_um * (2.0 * PI * i as f64 / nx as f64).cos()))
+            .collect();
+        text.push_str(&row.join(","));
+        text.push('\n');
+    }
+    std::fs::write(&map, text).unwrap();
+    let fields = dir.join("fields.csv");
+    let base = [
+        map.to_str().unwrap(),
+        "--film",
+        "1MPa,0.5",
+        "--substrate",
+        "1MPa,0.5",
+        "--thickness",
+        "2um",
+        "--pixel-size",
+        "1um",
+        "--height-unit",
+        "um",
+    ];
+    // Full contact: p* = π E* a/λ (E* = 4/3 MPa for ν = 0.5); at p0 = 2p* the exact rms of
+    // p − p0 is p*/√2.
+    let e_star = 1e6 / 0.75;
+    let p_star = PI * e_star * a_um * 1e-6 / (nx as f64 * pixel);
+    let p0 = format!("{}", 2.0 * p_star);
+    let mut args = base.to_vec();
+    args.extend(["--pressure", &p0, "--format", "json", "--fields"]);
+    args.push(fields.to_str().unwrap());
+    let out = verify(&args);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["area_fraction"].as_f64(), Some(1.0));
+    assert_eq!(v["solver"]["status"].as_str(), Some("converged"));
+    let rms = v["sigma_rms_top_pa"].as_f64().unwrap();
+    assert!((rms / (p_star / 2f64.sqrt()) - 1.0).abs() < 1e-8, "{rms}");
+    let written = std::fs::read_to_string(&fields).unwrap();
+    assert_eq!(written.lines().count(), 1 + nx * ny);
+    assert!(written.starts_with("x_m,y_m,height_m,pressure_pa"));
+
+    // A bond strength below the interface shear: exit 1; far above: exit 0.
+    for (bond, code) in [("1Pa", 1), ("1GPa", 0)] {
+        let mut args = base.to_vec();
+        args.extend(["--pressure", &p0, "--bond-strength", bond]);
+        assert_eq!(verify(&args).status.code(), Some(code), "bond {bond}");
+    }
+
+    // Bad input: exit 2, one line naming the file and line, no fields file.
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, "0,1,2\n0,1\n").unwrap();
+    let bad_fields = dir.join("bad-fields.csv");
+    let mut args = base.to_vec();
+    args[0] = bad.to_str().unwrap();
+    args.extend([
+        "--pressure",
+        "1kPa",
+        "--fields",
+        bad_fields.to_str().unwrap(),
+    ]);
+    let out = verify(&args);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bad.csv:2"), "{err}");
+    assert!(!bad_fields.exists());
+    let mut args = base.to_vec();
+    args[2] = "1MPa";
+    args.extend(["--pressure", "1kPa"]);
+    let out = verify(&args);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--film"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
