@@ -451,24 +451,33 @@ where
             since_fresh = 0;
         }
         // g ← u − h − ḡ with ḡ the mean of u − h on the contact set.
-        let (sum_c, n_c) = g.iter_mut().zip(&u).zip(&h).zip(&p).fold(
-            (0.0, 0usize),
-            |(s, c), (((gi, ui), hi), pi)| {
+        let parts = chunked(&mut g, |o, gc| {
+            let (mut s, mut k) = (0.0, 0.0);
+            for ((gi, ui), (hi, pi)) in gc.iter_mut().zip(&u[o..]).zip(h[o..].iter().zip(&p[o..])) {
                 *gi = ui - hi;
-                if *pi > 0.0 { (s + *gi, c + 1) } else { (s, c) }
-            },
-        );
-        let n_c = n_c.max(1) as f64;
-        let gbar = sum_c / n_c;
-        let (mut g2, mut pen) = (0.0, 0.0f64);
-        for (gi, pi) in g.iter_mut().zip(&p) {
-            *gi -= gbar;
-            if *pi > 0.0 {
-                g2 += *gi * *gi;
-            } else {
-                pen = pen.max(-*gi);
+                if *pi > 0.0 {
+                    s += *gi;
+                    k += 1.0;
+                }
             }
-        }
+            [s, k]
+        });
+        let (sum_c, n_c) = (sum(&parts, 0), sum(&parts, 1));
+        let n_c = n_c.max(1.0);
+        let gbar = sum_c / n_c;
+        let parts = chunked(&mut g, |o, gc| {
+            let (mut g2, mut pen) = (0.0, 0.0f64);
+            for (gi, pi) in gc.iter_mut().zip(&p[o..]) {
+                *gi -= gbar;
+                if *pi > 0.0 {
+                    g2 += *gi * *gi;
+                } else {
+                    pen = pen.max(-*gi);
+                }
+            }
+            [g2, pen]
+        });
+        let (g2, pen) = (sum(&parts, 0), max(&parts, 1));
         gap_rms = (g2 / n_c).sqrt();
         penetration = pen;
         if (gap_rms <= tol && penetration <= tol) || iterations >= settings.max_iter {
@@ -482,26 +491,35 @@ where
         // Conjugate direction on the contact set, and Σ g·t, mean of t there.
         let beta = if conjugate { g2 / g_old } else { 0.0 };
         g_old = g2;
-        let (mut num, mut sum_t) = (0.0, 0.0);
-        for ((ti, gi), pi) in t.iter_mut().zip(&g).zip(&p) {
-            if *pi > 0.0 {
-                *ti = gi + beta * *ti;
-                num += gi * *ti;
-                sum_t += *ti;
-            } else {
-                *ti = 0.0;
+        let parts = chunked(&mut t, |o, tc| {
+            let (mut num, mut sum_t) = (0.0, 0.0);
+            for (ti, (gi, pi)) in tc.iter_mut().zip(g[o..].iter().zip(&p[o..])) {
+                if *pi > 0.0 {
+                    *ti = gi + beta * *ti;
+                    num += gi * *ti;
+                    sum_t += *ti;
+                } else {
+                    *ti = 0.0;
+                }
             }
-        }
+            [num, sum_t]
+        });
+        let (num, sum_t) = (sum(&parts, 0), sum(&parts, 1));
         let tbar = sum_t / n_c;
         convolve(&mut plan, &t, &mut r);
         // Σ_c (r − r̄) t = Σ_c r (t − t̄): the rigid-shift part of K t drops out.
-        let den: f64 = r
-            .iter()
-            .zip(&t)
-            .zip(&p)
-            .filter(|(_, pi)| **pi > 0.0)
-            .map(|((ri, ti), _)| ri * (ti - tbar))
-            .sum();
+        let den = sum(
+            &chunked_ref(&r, |o, rc| {
+                let mut den = 0.0;
+                for (ri, (ti, pi)) in rc.iter().zip(t[o..].iter().zip(&p[o..])) {
+                    if *pi > 0.0 {
+                        den += ri * (ti - tbar);
+                    }
+                }
+                [den]
+            }),
+            0,
+        );
         if den.is_nan() || den <= 0.0 {
             return Err(Error::Numerical {
                 what: "boundary-element contact",
@@ -513,36 +531,47 @@ where
         }
         let step = num / den;
         // Update, project to p ≥ 0, re-admit penetrating points, rescale to the load.
-        let mut readmitted = false;
-        let mut clamped = false;
-        let mut total = 0.0;
-        for ((pi, ti), gi) in p.iter_mut().zip(&t).zip(&g) {
-            if *pi > 0.0 {
-                let v = *pi - step * ti;
-                if v <= 0.0 {
-                    clamped = true;
-                    *pi = 0.0;
-                } else {
-                    *pi = v;
+        let parts = chunked(&mut p, |o, pc| {
+            let (mut total, mut clamped, mut readmitted) = (0.0, 0.0, 0.0);
+            for (pi, (ti, gi)) in pc.iter_mut().zip(t[o..].iter().zip(&g[o..])) {
+                if *pi > 0.0 {
+                    let v = *pi - step * ti;
+                    if v <= 0.0 {
+                        clamped = 1.0;
+                        *pi = 0.0;
+                    } else {
+                        *pi = v;
+                    }
                 }
+                if *pi == 0.0 && *gi < 0.0 {
+                    *pi = -step * gi;
+                    readmitted = 1.0;
+                }
+                total += *pi;
             }
-            if *pi == 0.0 && *gi < 0.0 {
-                *pi = -step * gi;
-                readmitted = true;
-            }
-            total += *pi;
-        }
-        conjugate = !readmitted;
+            [total, clamped, readmitted]
+        });
+        let (total, clamped, readmitted) = (sum(&parts, 0), max(&parts, 1), max(&parts, 2));
+        conjugate = readmitted == 0.0;
         let scale = p0 * n as f64 / total;
-        let linear = !(clamped || readmitted) && since_fresh < REFRESH_EVERY;
+        let linear = clamped == 0.0 && readmitted == 0.0 && since_fresh < REFRESH_EVERY;
         if linear {
-            for ((pi, ui), ri) in p.iter_mut().zip(u.iter_mut()).zip(&r) {
-                *pi *= scale;
-                *ui = scale * (*ui - step * ri);
-            }
+            chunked(&mut p, |_, pc| {
+                pc.iter_mut().for_each(|pi| *pi *= scale);
+                [0.0; 0]
+            });
+            chunked(&mut u, |o, uc| {
+                for (ui, ri) in uc.iter_mut().zip(&r[o..]) {
+                    *ui = scale * (*ui - step * ri);
+                }
+                [0.0; 0]
+            });
             since_fresh += 1;
         } else {
-            p.iter_mut().for_each(|pi| *pi *= scale);
+            chunked(&mut p, |_, pc| {
+                pc.iter_mut().for_each(|pi| *pi *= scale);
+                [0.0; 0]
+            });
             need_fresh = true;
         }
     }
@@ -583,6 +612,43 @@ where
             status,
         },
     })
+}
+
+/// Elements per parallel task of the pointwise passes.
+const PAR_CHUNK: usize = 1 << 14;
+
+/// Apply `f(offset, chunk)` to consecutive chunks of `data` in parallel; returns the per-chunk
+/// results in chunk order (combined with [`sum`] or [`max`], so the totals do not depend on
+/// the thread count or scheduling).
+fn chunked<const K: usize>(
+    data: &mut [f64],
+    f: impl Fn(usize, &mut [f64]) -> [f64; K] + Sync,
+) -> Vec<[f64; K]> {
+    data.par_chunks_mut(PAR_CHUNK)
+        .enumerate()
+        .map(|(c, chunk)| f(c * PAR_CHUNK, chunk))
+        .collect()
+}
+
+/// Read-only version of [`chunked`].
+fn chunked_ref<const K: usize>(
+    data: &[f64],
+    f: impl Fn(usize, &[f64]) -> [f64; K] + Sync,
+) -> Vec<[f64; K]> {
+    data.par_chunks(PAR_CHUNK)
+        .enumerate()
+        .map(|(c, chunk)| f(c * PAR_CHUNK, chunk))
+        .collect()
+}
+
+/// Sum of entry `i` of the per-chunk results.
+fn sum<const K: usize>(parts: &[[f64; K]], i: usize) -> f64 {
+    parts.iter().map(|p| p[i]).sum()
+}
+
+/// Maximum of entry `i` of the per-chunk results.
+fn max<const K: usize>(parts: &[[f64; K]], i: usize) -> f64 {
+    parts.iter().map(|p| p[i]).fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// The compliance on the (transposed half-) spectrum grid, including the 1/N of the inverse
