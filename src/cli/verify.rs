@@ -209,6 +209,7 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
                 "thickness_m": d, "pressure_pa": p0,
                 "solver": {
                     "iterations": sol.convergence.iterations,
+                    "restarts": sol.convergence.restarts,
                     "gap_rms_in_contact_m": sol.convergence.gap_rms_in_contact,
                     "max_penetration_m": sol.convergence.max_penetration,
                     "tolerance_m": sol.convergence.tolerance,
