@@ -494,3 +494,40 @@ fn cli_verify_reports_json_writes_fields_and_maps_exit_codes() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--film"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn converges_to_an_admissible_solution_across_thickness_and_load() {
+    // Thin films make the kernel stiff at long wavelengths (ill-conditioned); the solution
+    // must still satisfy p ≥ 0, mean p0, gap ≥ −tol off contact and rms gap ≤ tol in contact.
+    let s = self_affine(64);
+    let layers = rubber_on_steel();
+    let e0 = layers.film.e_star();
+    for qld in [0.05, 0.5, 5.0] {
+        let stack = Stack::new(layers, qld / s.q_low()).unwrap();
+        for load in [0.003, 0.03, 0.3] {
+            let p0 = load * e0 * s.rms_slope();
+            let sol = bem::solve(&s, &stack, p0, &BemSettings::default()).unwrap();
+            let c = sol.convergence;
+            assert_eq!(c.status, Termination::Converged, "qLd {qld}, load {load}");
+            assert!(c.load_error < 1e-12);
+            let mean = sol.pressure.iter().sum::<f64>() / s.len() as f64;
+            assert!((mean / p0 - 1.0).abs() < 1e-12);
+            for (p, g) in sol.pressure.iter().zip(&sol.gap) {
+                assert!(
+                    *p >= 0.0 && (*p > 0.0 || *g >= -c.tolerance),
+                    "qLd {qld}, load {load}: p {p}, g {g}, tol {}",
+                    c.tolerance
+                );
+            }
+            let in_contact: Vec<f64> = sol
+                .pressure
+                .iter()
+                .zip(&sol.gap)
+                .filter(|(p, _)| **p > 0.0)
+                .map(|(_, g)| g * g)
+                .collect();
+            let rms = (in_contact.iter().sum::<f64>() / in_contact.len() as f64).sqrt();
+            assert!(rms <= c.tolerance, "qLd {qld}, load {load}");
+        }
+    }
+}
