@@ -97,6 +97,8 @@ struct Grid {
     err4: Vec<f64>,
     /// Per panel: partial-integral coefficients for G at its two nodes (from the panel's left end).
     partial: Vec<[[f64; 2]; 2]>,
+    /// Per panel: the leading error term of those partial integrals per unit ψ'' (signed).
+    partial_curv: Vec<[f64; 2]>,
     /// Per panel: width in u and left end.
     width: Vec<f64>,
     left: Vec<f64>,
@@ -120,6 +122,7 @@ impl Grid {
             rho: vec![],
             err4: vec![],
             partial: vec![],
+            partial_curv: vec![],
             width: vec![],
             left: vec![],
             low_octave_panels: 0,
@@ -183,6 +186,14 @@ impl Grid {
                     }
                 }
                 g.partial.push(partial);
+                // ∫ from the left end = −∫ from the right end when flipped (the full-panel integral
+                // of (s − s1)(s − s2) vanishes by orthogonality); (u − u1)(u − u2) = Δ²(s − s1)(s − s2).
+                let c = |k: usize| 0.5 * rule.curv[k] * scale * width * width;
+                g.partial_curv.push(if flip {
+                    [-c(nodes[0]), -c(nodes[1])]
+                } else {
+                    [c(nodes[0]), c(nodes[1])]
+                });
                 g.err4.push(rule.err4 * scale * width.powi(4));
                 g.width.push(width);
                 g.left.push(a);
@@ -198,30 +209,45 @@ impl Grid {
         self.err4.len()
     }
 
-    /// Σ_j w_j ρ_j ψ_j with its error estimate (divided differences of ρψ).
-    fn integrate(&self, psi: &[f64]) -> (f64, f64) {
+    /// Per-panel error estimates of Σ w ρ ψ from panel `from` on: the Gauss error term with ψ⁗
+    /// from the fourth divided difference of ρψ over five neighbouring nodes (all ≥ node 2·from).
+    fn panel_errors(&self, f: &[f64], from: usize) -> Vec<f64> {
+        let n = self.q.len();
+        let lo = 2 * from;
+        (0..self.panels())
+            .map(|p| {
+                if p < from || n - lo < 5 {
+                    return 0.0;
+                }
+                let start = (2 * p).saturating_sub(2).max(lo).min(n - 5);
+                ERR_SAFETY
+                    * self.err4[p]
+                    * (24.0 * divided_difference4(&self.u[start..start + 5], &f[start..start + 5]))
+                        .abs()
+            })
+            .collect()
+    }
+
+    /// Σ_j w_j ρ_j ψ_j over the panels from `from` on, with its error estimate.
+    fn integrate_from(&self, psi: &[f64], from: usize) -> (f64, f64) {
+        let f: Vec<f64> = psi.iter().zip(&self.rho).map(|(p, r)| p * r).collect();
         let mut sum = 0.0;
         let mut abs = 0.0;
-        let mut err = 0.0;
-        let n = self.q.len();
-        let f: Vec<f64> = psi.iter().zip(&self.rho).map(|(p, r)| p * r).collect();
-        for p in 0..self.panels() {
-            let (j0, j1) = (2 * p, 2 * p + 1);
-            let v = self.w[j0] * f[j0] + self.w[j1] * f[j1];
+        for p in from..self.panels() {
+            let v = self.w[2 * p] * f[2 * p] + self.w[2 * p + 1] * f[2 * p + 1];
             sum += v;
             abs += v.abs();
-            if n >= 5 {
-                let start = (2 * p).saturating_sub(2).min(n - 5);
-                err += self.err4[p]
-                    * (24.0 * divided_difference4(&self.u[start..start + 5], &f[start..start + 5]))
-                        .abs();
-            }
         }
-        (sum, ERR_SAFETY * err + 8.0 * EPS * abs * (n as f64).sqrt())
+        let err: f64 = self.panel_errors(&f, from).iter().sum();
+        (sum, err + 8.0 * EPS * abs * (self.q.len() as f64).sqrt())
+    }
+
+    fn integrate(&self, psi: &[f64]) -> (f64, f64) {
+        self.integrate_from(psi, 0)
     }
 }
 
-/// How far the graded region reaches above q_L, in panel widths h (the two-node rule is used
+/// How far the graded region reaches above q_L, in panel widths (the two-node rule is used
 /// only where a panel is narrower than 1/64 of its distance to q_L).
 const GRADED_SPAN: f64 = 64.0;
 /// Width (in ln q) of the innermost piece above q_L, done in closed form.
@@ -240,7 +266,7 @@ struct GlPanel {
 }
 
 /// The interface quadrature near q_L, where P(G(u)) ∝ (u − u_L)^{-1/2} once G ≫ p0²: panels
-/// halving towards q_L (each as wide as its distance to q_L, split at the spectrum's knots),
+/// shrinking towards q_L (each half as wide as its distance to q_L, split at the spectrum's knots),
 /// 6-point Gauss–Legendre on each (error: the difference to 5 points), and the innermost
 /// [u_L, u_L + 1e-11] in closed form, ∫_0^{G} P dG being known exactly.
 struct Graded {
@@ -283,8 +309,10 @@ impl Graded {
         let q_l = spectrum.q_low();
         let u0 = q_l.ln();
         let u_end = spectrum.support().1.ln();
+        // The two-node rule takes over where panels are narrower than 1/64 of their distance to q_L.
+        let first = grid.width.first().copied().unwrap_or(h).min(h);
         let base_from = (0..grid.panels())
-            .find(|&p| grid.left[p] - u0 >= GRADED_SPAN * h)
+            .find(|&p| grid.left[p] - u0 >= GRADED_SPAN * first.max(grid.width[p]))
             .unwrap_or(grid.panels());
         let span = if base_from < grid.panels() {
             grid.left[base_from] - u0
@@ -296,6 +324,7 @@ impl Graded {
         let mut delta = span;
         while delta > INNER_WIDTH {
             ends.push(delta);
+            ends.push(0.75 * delta);
             delta *= 0.5;
         }
         ends.push(delta);
@@ -646,65 +675,55 @@ fn evaluate_on(
         let f: Vec<f64> = kern.iter().zip(&grid.rho).map(|(k, r)| k * r).collect();
         // The start of the range, where P(G(u)) ∝ (u − u_L)^{-1/2}: graded panels.
         let near = graded.integrate(layers, d, p0, cg, req);
-        // Then the two-node panels: G at every node from the running sum plus the partial integral.
+        // Then the two-node panels. First G and P at every node (forward pass: running sum plus
+        // the panel's partial integral), with the error of P from the error of G.
+        let from = graded.base_from;
+        let g_errs = grid.panel_errors(&f, 0);
+        let mut p_node = vec![0.0; n];
+        // |dP/dG| times the cumulative G error, and dP/dG times the signed partial-integral error.
+        let mut dp_cum = vec![0.0; n];
+        let mut dp_part = vec![0.0; n];
         let mut g_left = near.g_raw;
         let mut g_left_err = near.g_raw_err;
-        let (mut sig, mut tau) = (near.sigma, near.tau);
-        for p in graded.base_from..grid.panels() {
+        for (p, g_err) in g_errs.iter().enumerate().skip(from) {
             let (j0, j1) = (2 * p, 2 * p + 1);
-            // Linear-interpolation error of the partial integral: |ψ''| Δ²/8 of the panel weight.
             let start = j0.saturating_sub(1).min(n.saturating_sub(3));
-            let curv = if n >= 3 {
-                second_difference(&grid.u[start..start + 3], &f[start..start + 3]).abs()
+            let psi2 = if n >= 3 {
+                second_difference(&grid.u[start..start + 3], &f[start..start + 3])
             } else {
                 0.0
             };
-            let part_err = curv * grid.width[p].powi(2) / 8.0 * (grid.w[j0] + grid.w[j1]);
-            let mut pn = [0.0; 2];
-            let mut dpn = [0.0; 2];
-            for jj in 0..2 {
+            for (jj, j) in [j0, j1].into_iter().enumerate() {
                 let gv =
                     cg * (g_left + grid.partial[p][jj][0] * f[j0] + grid.partial[p][jj][1] * f[j1]);
-                pn[jj] = contact_probability(p0, gv);
-                dpn[jj] = contact_probability_slope(p0, gv) * cg * (g_left_err + part_err);
-            }
-            let dd4 = |psi: &dyn Fn(usize) -> f64| {
-                if n < 5 {
-                    return 0.0;
-                }
-                let s0 = (2 * p).saturating_sub(2).min(n - 5);
-                let vals: Vec<f64> = (s0..s0 + 5).map(psi).collect();
-                grid.err4[p]
-                    * ERR_SAFETY
-                    * (24.0 * divided_difference4(&grid.u[s0..s0 + 5], &vals)).abs()
-            };
-            // P at the neighbours' nodes for the divided differences: reuse this panel's values
-            // for its own nodes and the node values recorded so far otherwise.
-            let add = |acc: &mut (f64, f64), k2: &[f64]| {
-                let v = grid.w[j0] * f[j0] * pn[0] * k2[j0] + grid.w[j1] * f[j1] * pn[1] * k2[j1];
-                let dp =
-                    grid.w[j0] * f[j0] * k2[j0] * dpn[0] + grid.w[j1] * f[j1] * k2[j1] * dpn[1];
-                let e = dd4(&|j: usize| {
-                    f[j] * k2[j]
-                        * if j == j0 {
-                            pn[0]
-                        } else if j == j1 {
-                            pn[1]
-                        } else {
-                            contact_probability(p0, cg * g_at(grid, &f, j, g_left, p))
-                        }
-                });
-                acc.0 += v;
-                acc.1 += dp + e + 8.0 * EPS * v.abs();
-            };
-            if req.sigma_interface {
-                add(&mut sig, &f2);
-            }
-            if req.tau_interface {
-                add(&mut tau, &g2);
+                p_node[j] = contact_probability(p0, gv);
+                let slope = contact_probability_slope(p0, gv) * cg;
+                dp_cum[j] = slope * g_left_err;
+                dp_part[j] = slope * psi2 * grid.partial_curv[p][jj];
             }
             g_left += grid.w[j0] * f[j0] + grid.w[j1] * f[j1];
-            g_left_err += dd4(&|j: usize| f[j]);
+            g_left_err += g_err;
+        }
+        let base = |k2: &[f64], acc: (f64, f64)| {
+            let psi: Vec<f64> = (0..n).map(|j| kern[j] * p_node[j] * k2[j]).collect();
+            let (v, e) = grid.integrate_from(&psi, from);
+            let wt = |j: usize| grid.w[j] * grid.rho[j] * kern[j] * k2[j];
+            let dp: f64 = (from..grid.panels())
+                .map(|p| {
+                    let (j0, j1) = (2 * p, 2 * p + 1);
+                    wt(j0) * dp_cum[j0]
+                        + wt(j1) * dp_cum[j1]
+                        + ERR_SAFETY * (wt(j0) * dp_part[j0] + wt(j1) * dp_part[j1]).abs()
+                })
+                .sum();
+            (acc.0 + v, acc.1 + e + dp)
+        };
+        let (mut sig, mut tau) = (near.sigma, near.tau);
+        if req.sigma_interface {
+            sig = base(&f2, sig);
+        }
+        if req.tau_interface {
+            tau = base(&g2, tau);
         }
         if req.sigma_interface {
             sigma_rms_interface = Some(sqrt_estimate(
@@ -742,24 +761,6 @@ fn evaluate_on(
         low_octave_share,
         kernel_evaluations: evaluations,
     })
-}
-
-/// G/cg at node j (of panel near `p`), from the running sum at panel p's left end; used only
-/// for the neighbours in the divided-difference error estimate (first order is enough there).
-fn g_at(grid: &Grid, f: &[f64], j: usize, g_left_p: f64, p: usize) -> f64 {
-    let q = j / 2;
-    let mut g = g_left_p;
-    if q < p {
-        for k in q..p {
-            g -= grid.w[2 * k] * f[2 * k] + grid.w[2 * k + 1] * f[2 * k + 1];
-        }
-    } else {
-        for k in p..q {
-            g += grid.w[2 * k] * f[2 * k] + grid.w[2 * k + 1] * f[2 * k + 1];
-        }
-    }
-    let jj = j % 2;
-    (g + grid.partial[q][jj][0] * f[2 * q] + grid.partial[q][jj][1] * f[2 * q + 1]).max(0.0)
 }
 
 /// Second divided difference f[u0, u1, u2] times 2 (≈ f'').

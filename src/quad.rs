@@ -104,6 +104,9 @@ pub struct ExpGauss2 {
     pub partial: [[f64; 2]; 2],
     /// ∫_0^1 e^{z s} (s − s_1)² (s − s_2)² ds / 4!: the error of the rule is φ⁗(ξ) times this.
     pub err4: f64,
+    /// `curv[j]` = ∫_0^{s_j} e^{z s} (s − s_1)(s − s_2) ds: the partial integral to node j misses
+    /// φ''/2 times this (the leading term of the linear interpolant's error).
+    pub curv: [f64; 2],
 }
 
 impl ExpGauss2 {
@@ -130,10 +133,13 @@ impl ExpGauss2 {
         let w = [w1 * m0, w2 * m0];
         // Partial moments on [0, s_j]: ∫_0^{s_j} s^k e^{zs} ds = s_j^{k+1} m_k(z s_j).
         let mut partial = [[0.0; 2]; 2];
+        let mut curv = [0.0; 2];
         for j in 0..2 {
             let pm = exp_moments(z * s[j]);
             let p0 = s[j] * pm[0];
             let p1 = s[j] * s[j] * pm[1];
+            let p2 = s[j] * s[j] * s[j] * pm[2];
+            curv[j] = p2 - (s[0] + s[1]) * p1 + s[0] * s[1] * p0;
             // ℓ_0(s) = (s_2 − s)/(s_2 − s_1), ℓ_1(s) = (s − s_1)/(s_2 − s_1)
             let h = s[1] - s[0];
             partial[j][0] = (s[1] * p0 - p1) / h;
@@ -145,6 +151,7 @@ impl ExpGauss2 {
             w,
             partial,
             err4,
+            curv,
         }
     }
 }

@@ -338,3 +338,32 @@ fn distributions_are_normalised_and_tails_consistent() {
         );
     }
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+    /// Over random scenes across the extreme ranges (q0 d 1e-4..1e2, E ratios 1e-6..1e3, ν up to
+    /// 0.5, H 0.3..1, p0 over 4 decades), every result is finite and its error estimate at the
+    /// default rtol bounds the difference to a tighter (rtol 1e-11) evaluation.
+    #[test]
+    fn estimates_hold_on_random_scenes(
+        log_q0d in -4.0f64..2.0, log_ratio in -6.0f64..3.0, nu0 in 0.0f64..=0.5, nu1 in 0.0f64..=0.5,
+        hurst in 0.3f64..=1.0, log_p in -3.0f64..1.0,
+    ) {
+        let spectrum = Spectrum::self_affine(hurst, 1e5, 1e8, None).unwrap().scaled_to_rms_slope(1.0).unwrap();
+        let st = stack(1e6, nu0, 1e6 / 10f64.powf(log_ratio), nu1, 10f64.powf(log_q0d) / 1e5);
+        let p0 = 1e5 * 10f64.powf(log_p);
+        let c = Engine::new(&spectrum, Settings::default()).evaluate(&st, p0, Request::all()).unwrap();
+        let t = Engine::new(&spectrum, Settings { rtol: 1e-11 }).evaluate(&st, p0, Request::all()).unwrap();
+        let pairs = [
+            (c.area_fraction, t.area_fraction),
+            (c.sigma_rms_top.unwrap(), t.sigma_rms_top.unwrap()),
+            (c.sigma_rms_interface.unwrap(), t.sigma_rms_interface.unwrap()),
+            (c.tau_rms_interface.unwrap(), t.tau_rms_interface.unwrap()),
+            (c.e_eff_over_e_film.unwrap(), t.e_eff_over_e_film.unwrap()),
+        ];
+        for (k, (got, want)) in pairs.iter().enumerate() {
+            proptest::prop_assert!(got.value.is_finite() && got.err.is_finite());
+            proptest::prop_assert!((got.value - want.value).abs() <= got.err + want.err, "quantity {}: {:e} vs {:e} ± {:e}", k, got.value, want.value, got.err);
+        }
+    }
+}

@@ -1,5 +1,8 @@
 //! Integration tests: one binary, one module per area.
 mod bem;
+mod check;
+mod cli_check;
+mod cli_response;
 mod contact;
 mod layer;
 mod psd_convert;

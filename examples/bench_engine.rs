@@ -1,0 +1,119 @@
+//! Benchmark: one contact evaluation (all quantities at one thickness) on a 1000-point
+//! tabulated PSD, and the area alone; medians over repeated runs. The Engine (d-independent
+//! grid) is built once, as in a thickness sweep.
+//!
+//! Run: `cargo run --release --example bench_engine`
+
+use coatcheck::contact::{Engine, Request};
+use coatcheck::layer::{Bilayer, Elastic, Stack};
+use coatcheck::prec::Settings;
+use coatcheck::psd::{Spectrum, Tabulated};
+use std::hint::black_box;
+use std::time::Instant;
+
+fn measured_like(n: usize) -> Spectrum {
+    // Self-affine (H = 0.8) with roll-off at 3e4 1/m and a 3 % ripple, q from 1e4 to 1e8 1/m.
+    let q: Vec<f64> = (0..n)
+        .map(|i| 1e4 * 1e4f64.powf(i as f64 / (n - 1) as f64))
+        .collect();
+    let c: Vec<f64> = q
+        .iter()
+        .map(|&q| {
+            let base = if q < 3e4 {
+                1.0
+            } else {
+                (q / 3e4).powf(-2.0 * 1.8)
+            };
+            base * (1.0 + 0.03 * (7.0 * q.ln()).sin())
+        })
+        .collect();
+    Spectrum::Tabulated(Tabulated::new(q, c).expect("valid table"))
+        .scaled_to_rms_slope(0.5)
+        .expect("positive slope")
+}
+
+fn median_us(mut f: impl FnMut(), reps: usize) -> f64 {
+    for _ in 0..reps / 10 + 1 {
+        f();
+    }
+    let mut t: Vec<f64> = (0..reps)
+        .map(|_| {
+            let s = Instant::now();
+            f();
+            s.elapsed().as_secs_f64() * 1e6
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[reps / 2]
+}
+
+fn main() {
+    let spectrum = measured_like(1000);
+    let pair = Bilayer::new(
+        Elastic::new(1e6, 0.5).expect("valid"),
+        Elastic::new(2e11, 0.3).expect("valid"),
+    );
+    println!(
+        "{:>8} {:>10} {:>16} {:>12} {:>12} {:>12}",
+        "rtol", "d [um]", "request", "median [us]", "evaluations", "max rel err"
+    );
+    for rtol in [1e-6, 1e-8] {
+        let engine = Engine::new(&spectrum, Settings { rtol });
+        for d in [1e-6, 20e-6, 200e-6] {
+            let stack = Stack::new(pair, d).expect("valid");
+            for (name, req) in [
+                ("area", Request::default()),
+                ("all", Request::all()),
+                (
+                    "tau only",
+                    Request {
+                        tau_interface: true,
+                        ..Default::default()
+                    },
+                ),
+            ] {
+                let c = engine.evaluate(&stack, 1e5, req).expect("evaluates");
+                let worst = [
+                    Some(c.area_fraction),
+                    c.sigma_rms_top,
+                    c.sigma_rms_interface,
+                    c.tau_rms_interface,
+                ]
+                .into_iter()
+                .flatten()
+                .map(|e| e.rel_err())
+                .fold(0.0, f64::max);
+                let t = median_us(
+                    || {
+                        black_box(
+                            engine
+                                .evaluate(black_box(&stack), 1e5, req)
+                                .expect("evaluates"),
+                        );
+                    },
+                    201,
+                );
+                println!(
+                    "{rtol:>8.0e} {:>10.1} {name:>16} {t:>12.1} {:>12} {worst:>12.1e}",
+                    d * 1e6,
+                    c.kernel_evaluations
+                );
+            }
+        }
+    }
+    let t = median_us(
+        || {
+            black_box(
+                Engine::new(black_box(&spectrum), Settings::default())
+                    .evaluate(
+                        &Stack::new(pair, 20e-6).expect("valid"),
+                        1e5,
+                        Request::all(),
+                    )
+                    .expect("evaluates"),
+            );
+        },
+        51,
+    );
+    println!("engine construction + one full evaluation (rtol 1e-8, d = 20 um): {t:.1} us");
+}

@@ -1,0 +1,125 @@
+//! `coatcheck response`: S(qd), f(qd), g(qd) for a film on a substrate (the paper's Fig. 14 as
+//! numbers).
+
+use clap::{Args, ValueEnum};
+use coatcheck::Error;
+use coatcheck::layer::{Bilayer, Elastic};
+use coatcheck::units::{Dim, parse_quantity};
+use comfy_table::{Table, presets::UTF8_FULL};
+
+#[derive(Clone, Copy, ValueEnum)]
+pub enum Format {
+    Table,
+    Csv,
+    Json,
+}
+
+#[derive(Args)]
+pub struct ResponseArgs {
+    /// Film: Young's modulus and Poisson ratio, e.g. `1MPa,0.5`.
+    #[arg(long)]
+    film: String,
+    /// Substrate: Young's modulus and Poisson ratio, e.g. `200GPa,0.3`.
+    #[arg(long)]
+    substrate: String,
+    /// q·d values: a list `0.1,1,10` or a log-spaced range `from:to:n`.
+    #[arg(long)]
+    qd: String,
+    #[arg(long, value_enum, default_value = "table")]
+    format: Format,
+}
+
+fn elastic(flag: &'static str, text: &str) -> Result<Elastic, Error> {
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != 2 {
+        return Err(Error::invalid(flag, text, "E,nu (e.g. 1MPa,0.5)"));
+    }
+    let e = parse_quantity(parts[0], Dim::Pressure)
+        .map_err(|err| Error::invalid(flag, err, "a Young's modulus such as 1MPa"))?;
+    let nu = parse_quantity(parts[1], Dim::Dimensionless)
+        .map_err(|err| Error::invalid(flag, err, "a Poisson ratio in [0, 0.5]"))?;
+    Elastic::new(e, nu)
+}
+
+/// Parse `a,b,c` or `from:to:n` (n log-spaced points, n >= 2).
+pub fn parse_grid(flag: &'static str, text: &str) -> Result<Vec<f64>, Error> {
+    let num = |s: &str| -> Result<f64, Error> {
+        let v: f64 = s
+            .trim()
+            .parse()
+            .map_err(|_| Error::invalid(flag, s, "a number"))?;
+        if v.is_finite() && v >= 0.0 {
+            Ok(v)
+        } else {
+            Err(Error::invalid(flag, s, "a finite value >= 0"))
+        }
+    };
+    let parts: Vec<&str> = text.split(':').collect();
+    match parts.as_slice() {
+        [from, to, n] => {
+            let (a, b) = (num(from)?, num(to)?);
+            let n: usize = n
+                .trim()
+                .parse()
+                .map_err(|_| Error::invalid(flag, n, "a whole number of points >= 2"))?;
+            if n < 2 || a <= 0.0 || b <= a {
+                return Err(Error::invalid(
+                    flag,
+                    text,
+                    "from:to:n with 0 < from < to and n >= 2",
+                ));
+            }
+            Ok((0..n)
+                .map(|i| a * (b / a).powf(i as f64 / (n - 1) as f64))
+                .collect())
+        }
+        [list] => list.split(',').map(num).collect(),
+        _ => Err(Error::invalid(
+            flag,
+            text,
+            "a list a,b,c or a range from:to:n",
+        )),
+    }
+}
+
+pub fn run(args: ResponseArgs) -> Result<i32, Error> {
+    let pair = Bilayer::new(
+        elastic("--film", &args.film)?,
+        elastic("--substrate", &args.substrate)?,
+    );
+    let qd = parse_grid("--qd", &args.qd)?;
+    let rows: Vec<(f64, coatcheck::layer::Response)> =
+        qd.iter().map(|&x| (x, pair.response(x))).collect();
+    match args.format {
+        Format::Table => {
+            let mut t = Table::new();
+            t.load_preset(UTF8_FULL).set_header(["q·d", "S", "f", "g"]);
+            for (x, r) in &rows {
+                t.add_row([
+                    format!("{x:.4e}"),
+                    format!("{:.10e}", r.s),
+                    format!("{:.10e}", r.f),
+                    format!("{:.10e}", r.g),
+                ]);
+            }
+            println!("{t}");
+        }
+        Format::Csv => {
+            println!("qd,S,f,g");
+            for (x, r) in &rows {
+                println!("{x:e},{:e},{:e},{:e}", r.s, r.f, r.g);
+            }
+        }
+        Format::Json => {
+            let v: Vec<serde_json::Value> = rows
+                .iter()
+                .map(|(x, r)| serde_json::json!({"qd": x, "S": r.s, "f": r.f, "g": r.g}))
+                .collect();
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&v).expect("plain numbers serialise")
+            );
+        }
+    }
+    Ok(0)
+}
