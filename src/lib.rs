@@ -11,6 +11,7 @@
 //!
 //! Units are SI throughout (Pa, m, 1/m, m^4).
 
+pub mod bem;
 pub mod check;
 pub mod contact;
 pub mod error;

@@ -9,6 +9,7 @@ use clap::{Parser, Subcommand};
 mod psd;
 mod response;
 mod synth;
+mod verify;
 
 #[derive(Parser)]
 #[command(
@@ -33,6 +34,8 @@ enum Command {
     Psd(psd::PsdArgs),
     /// Write a synthetic self-affine surface (fixed seed) as a height map or line scans.
     Synth(synth::SynthArgs),
+    /// Exact contact on a height map (FFT boundary elements) beside Persson's estimate.
+    Verify(verify::VerifyArgs),
 }
 
 pub fn run() -> i32 {
@@ -43,6 +46,7 @@ pub fn run() -> i32 {
         Command::Response(a) => response::run(a),
         Command::Psd(a) => psd::run(a),
         Command::Synth(a) => synth::run(a),
+        Command::Verify(a) => verify::run(a),
     };
     match result {
         Ok(code) => code,
