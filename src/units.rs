@@ -110,22 +110,25 @@ pub fn to_si(value: f64, unit: &str, dim: Dim) -> Result<f64, UnitError> {
             if dim != Dim::Pressure || power != 1 {
                 return Err(wrong());
             }
-            return Ok(if base_with_prefix == "psi" {
-                6894.757293168361
-            } else {
-                1e5
-            });
+            return Ok(value
+                * if base_with_prefix == "psi" {
+                    6894.757293168361
+                } else {
+                    1e5
+                });
         }
         _ => {}
     }
     for (base, is_pressure) in [("Pa", true), ("m", false)] {
         if let Some(prefix) = base_with_prefix.strip_suffix(base) {
-            let Some(scale) = prefix_scale(prefix) else {
+            let Some(exponent) = prefix_exponent(prefix) else {
                 continue;
             };
             return match (is_pressure, dim) {
-                (true, Dim::Pressure) if power == 1 => Ok(scale),
-                (false, Dim::Length(k)) if k == power => Ok(scale.powi(power)),
+                (true, Dim::Pressure) if power == 1 => Ok(apply_exponent(value, exponent)),
+                (false, Dim::Length(k)) if k == power => {
+                    Ok(apply_exponent(value, exponent * power))
+                }
                 _ => Err(wrong()),
             };
         }
