@@ -73,6 +73,10 @@ fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
         RoughnessSource::Measured { path } => {
             rows.push(("roughness".into(), format!("PSD file {}", path.display())))
         }
+        RoughnessSource::Profile { path } => rows.push((
+            "roughness".into(),
+            format!("heights {} (PSD by coatcheck psd)", path.display()),
+        )),
         RoughnessSource::SelfAffine {
             hurst,
             q0,

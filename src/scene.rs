@@ -62,6 +62,7 @@ pub struct RawScene {
 #[serde(deny_unknown_fields, default)]
 pub struct RawRoughness {
     pub psd: Option<Field>,
+    pub profile: Option<Field>,
     pub model: Option<Field>,
     pub hurst: Option<Field>,
     pub q0: Option<Field>,
@@ -122,6 +123,7 @@ pub struct RawNumerics {
 /// The scene keys that can be set from the command line, with their flags.
 pub const FLAG_KEYS: &[(&str, &str)] = &[
     ("roughness.psd", "--psd"),
+    ("roughness.profile", "--profile"),
     ("roughness.model", "--model"),
     ("roughness.hurst", "--hurst"),
     ("roughness.q0", "--q0"),
@@ -154,6 +156,7 @@ pub const FLAG_KEYS: &[(&str, &str)] = &[
 const EXCLUSIVE: &[&[&[&str]]] = &[
     &[
         &["roughness.psd", "roughness.q_min", "roughness.q_max"],
+        &["roughness.profile"],
         &[
             "roughness.model",
             "roughness.hurst",
@@ -180,6 +183,7 @@ macro_rules! all_keys {
     ($s:ident, $($r:tt)+) => {
         [
             ("roughness.psd", $($r)+ $s.roughness.psd),
+            ("roughness.profile", $($r)+ $s.roughness.profile),
             ("roughness.model", $($r)+ $s.roughness.model),
             ("roughness.hurst", $($r)+ $s.roughness.hurst),
             ("roughness.q0", $($r)+ $s.roughness.q0),
@@ -211,7 +215,7 @@ macro_rules! all_keys {
 
 impl RawScene {
     /// Every key with its value.
-    pub fn fields(&self) -> [(&'static str, &Option<Field>); 26] {
+    pub fn fields(&self) -> [(&'static str, &Option<Field>); 27] {
         all_keys!(self, &)
     }
 
@@ -265,6 +269,9 @@ impl RawScene {
 pub enum RoughnessSource {
     /// A measured PSD file (columns q [1/m], C [m^4] unless its header says otherwise).
     Measured { path: PathBuf },
+    /// Measured heights (line scans or a height map with its metadata line), turned into a PSD
+    /// by the `coatcheck psd` pipeline with its defaults.
+    Profile { path: PathBuf },
     /// Eq. (2).
     SelfAffine {
         hurst: f64,
@@ -306,6 +313,11 @@ impl Roughness {
                     t
                 };
                 (Spectrum::Tabulated(t), w)
+            }
+            RoughnessSource::Profile { path } => {
+                let (_, psd) =
+                    crate::topography::psd_of_file(path, &Default::default(), &Default::default())?;
+                (Spectrum::Tabulated(psd.c2d), vec![])
             }
             RoughnessSource::SelfAffine {
                 hurst,
@@ -580,6 +592,10 @@ fn resolve_roughness(r: &RawRoughness, ctx: Ctx<'_>) -> Result<Roughness, Error>
         RoughnessSource::Measured {
             path: ctx.path(f, "roughness.psd")?,
         }
+    } else if let Some(f) = &r.profile {
+        RoughnessSource::Profile {
+            path: ctx.path(f, "roughness.profile")?,
+        }
     } else if let Some(f) = &r.model {
         let model = ctx.text(f, "roughness.model")?;
         let need = |g: &Option<Field>, key: &str, dim: Dim| -> Result<f64, Error> {
@@ -643,8 +659,8 @@ fn resolve_roughness(r: &RawRoughness, ctx: Ctx<'_>) -> Result<Roughness, Error>
         src
     } else {
         return Err(ctx.missing(
-            "roughness.psd or roughness.model",
-            "give a PSD file (--psd surface.csv) or a model (model = \"self-affine\" ...)",
+            "roughness.psd, roughness.profile or roughness.model",
+            "give a PSD file (--psd surface.csv), heights (--profile map.csv) or a model (model = \"self-affine\" ...)",
         ));
     };
     Ok(Roughness {

@@ -31,6 +31,10 @@ pub struct CheckArgs {
     /// Measured PSD file (columns q [1/m], C [m^4]); relative to the working directory.
     #[arg(long, allow_hyphen_values = true)]
     pub psd: Option<String>,
+    /// Measured heights (line scans or a height map, as `coatcheck psd` reads them); the PSD is
+    /// computed with the `coatcheck psd` defaults.
+    #[arg(long, allow_hyphen_values = true)]
+    pub profile: Option<String>,
     /// Roughness model: self-affine (eq. 2) or gaussian (eq. 5).
     #[arg(long)]
     pub model: Option<String>,
@@ -123,8 +127,9 @@ pub struct CheckArgs {
 
 impl CheckArgs {
     fn overrides(&self) -> Vec<(&'static str, String)> {
-        let all: [(&'static str, &Option<String>); 26] = [
+        let all: [(&'static str, &Option<String>); 27] = [
             ("roughness.psd", &self.psd),
+            ("roughness.profile", &self.profile),
             ("roughness.model", &self.model),
             ("roughness.hurst", &self.hurst),
             ("roughness.q0", &self.q0),

@@ -522,3 +522,56 @@ fn flags_override_the_scene_and_materials_dirs_override_the_library() {
     assert_eq!(bond["pass"], false);
     assert_eq!(v["governing_check"], "bond-shear");
 }
+
+/// `check --profile` runs the `coatcheck psd` pipeline on heights: the same numbers as writing
+/// the PSD with `coatcheck psd` and checking that file with `--psd`.
+#[test]
+fn profile_equals_psd_of_the_same_heights() {
+    let dir = std::env::temp_dir().join(format!("coatcheck-profile-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let map = root().join("examples/data/height-map.csv");
+    let psd = dir.join("map-psd.csv");
+    let o = run(&[
+        "psd",
+        map.to_str().unwrap(),
+        "--output",
+        psd.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let common = [
+        "--film",
+        "paper-rubber",
+        "--substrate",
+        "carbon-steel",
+        "--bond",
+        "epoxy",
+        "--thickness",
+        "20um",
+        "--pressure",
+        "0.1MPa",
+        "--format",
+        "json",
+    ];
+    let from_heights = run(&[&["check", "--profile", map.to_str().unwrap()][..], &common].concat());
+    let from_psd = run(&[&["check", "--psd", psd.to_str().unwrap()][..], &common].concat());
+    assert_eq!(
+        from_heights.status.code(),
+        Some(0),
+        "{}",
+        stderr(&from_heights)
+    );
+    assert_eq!(from_psd.status.code(), Some(0), "{}", stderr(&from_psd));
+    let a: serde_json::Value = serde_json::from_slice(&from_heights.stdout).unwrap();
+    let b: serde_json::Value = serde_json::from_slice(&from_psd.stdout).unwrap();
+    for key in [
+        "area_fraction",
+        "tau_rms_interface_pa",
+        "sigma_rms_interface_pa",
+        "min_thickness_m",
+    ] {
+        let (x, y) = (a[key].as_f64().unwrap(), b[key].as_f64().unwrap());
+        // The CSV round trip keeps 10+ significant digits.
+        assert!(((x - y) / y).abs() < 1e-6, "{key}: {x} vs {y}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
