@@ -480,6 +480,22 @@ impl Checker {
                 100.0 * evaluation.contact.low_octave_share
             ));
         }
+        // No NaN or infinity reaches a verdict: a non-finite value is a numerical failure.
+        if let Some(c) = checks.iter().find(|c| {
+            !(c.value.value.is_finite() && c.value.err.is_finite())
+                || c.margin.is_some_and(|m| !m.is_finite())
+        }) {
+            return Err(Error::Numerical {
+                what: "design check",
+                detail: format!(
+                    "{}: value {} ± {}, margin {:?} at d = {thickness} m",
+                    c.kind.name(),
+                    c.value.value,
+                    c.value.err,
+                    c.margin
+                ),
+            });
+        }
         let pass = checks.iter().all(|c| c.pass);
         let governing = checks
             .iter()

@@ -11,12 +11,15 @@
 //!
 //! Units are SI throughout (Pa, m, 1/m, m^4).
 
+pub mod batch;
 pub mod bem;
 pub mod check;
 pub mod contact;
 pub mod error;
+pub mod junit;
 pub mod layer;
 pub mod material;
+pub mod parquet;
 pub mod prec;
 pub mod psd;
 pub mod quad;

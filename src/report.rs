@@ -465,8 +465,8 @@ pub fn csv(scene: &Scene, outcome: &Outcome) -> Result<String, Error> {
 }
 
 /// The sweep columns: (header, unit scale to SI, getter).
-type Getter = fn(&Evaluation) -> Option<f64>;
-const SWEEP: &[(&str, &str, Getter)] = &[
+pub type Getter = fn(&Evaluation) -> Option<f64>;
+pub const SWEEP: &[(&str, &str, Getter)] = &[
     ("A/A0", "area_fraction", |e| {
         Some(e.contact.area_fraction.value)
     }),

@@ -26,6 +26,12 @@
 //! rtol = 1e-8
 //! ```
 //!
+//! Several measurements of one part are listed together, `psd = ["scan-a.csv", "scan-b.csv"]`
+//! (or `profile = [...]`): the check runs on each file's spectrum and reports the worst, naming
+//! the file ([`Roughness::each_file`]). A top-level `coatcheck_version = "0.1.0"` pins the
+//! version the design was qualified with; a different running version gives a warning
+//! ([`Scene::version_warning`]).
+//!
 //! The Gaussian band (eq. 5) is `model = "gaussian"` with `q0` and `width`. A substrate given by
 //! name may still set `yield_strength` (the grade's value overrides the library's). Unknown keys
 //! and contradictions (psd and a model, a material and explicit moduli, rms slope and height) are
@@ -39,7 +45,7 @@ use crate::material::{Bond, Kind, Library, Material};
 use crate::prec::Settings;
 use crate::psd::Spectrum;
 use crate::psd::read::{ReadOptions, read_spectrum};
-use crate::tomlin::{Ctx, Field, Source};
+use crate::tomlin::{Ctx, Field, Origin, Raw, Source};
 use crate::units::Dim;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -49,6 +55,7 @@ use std::path::{Path, PathBuf};
 #[serde(deny_unknown_fields, default)]
 pub struct RawScene {
     pub schema_version: Option<Field>,
+    pub coatcheck_version: Option<Field>,
     pub roughness: RawRoughness,
     pub film: RawFilm,
     pub substrate: RawSubstrate,
@@ -295,15 +302,72 @@ pub enum Scale {
 /// The roughness of a scene.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Roughness {
+    /// The roughness (the first file when the scene lists several).
     pub source: RoughnessSource,
+    /// The further files of a measured `source` when the scene lists several (same kind, same
+    /// scaling and q-range); empty otherwise.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub more_files: Vec<PathBuf>,
     pub scale: Option<Scale>,
     pub q_min: Option<f64>,
     pub q_max: Option<f64>,
+    /// The scene file and line that named the file(s), for messages about unreadable files.
+    #[serde(skip)]
+    pub declared_at: Option<(PathBuf, usize)>,
 }
 
 impl Roughness {
-    /// The spectrum (read, restricted to [q_min, q_max], scaled) with the reader's warnings.
+    /// The measured file of `source` (`None` for a model).
+    pub fn file(&self) -> Option<&Path> {
+        match &self.source {
+            RoughnessSource::Measured { path } | RoughnessSource::Profile { path } => Some(path),
+            _ => None,
+        }
+    }
+
+    /// One roughness per listed file (the scene's roughness itself when it has one file or a
+    /// model).
+    pub fn each_file(&self) -> Vec<Roughness> {
+        let one = |source: RoughnessSource| Roughness {
+            source,
+            more_files: Vec::new(),
+            ..self.clone()
+        };
+        let mut all = vec![one(self.source.clone())];
+        for path in &self.more_files {
+            all.push(one(match &self.source {
+                RoughnessSource::Profile { .. } => RoughnessSource::Profile { path: path.clone() },
+                _ => RoughnessSource::Measured { path: path.clone() },
+            }));
+        }
+        all
+    }
+
+    /// A file that cannot be read is reported at the scene line that named it.
+    fn locate(&self, e: Error) -> Error {
+        match (e, &self.declared_at) {
+            (Error::Io { path, source }, Some((scene, line))) => {
+                let key = match self.source {
+                    RoughnessSource::Profile { .. } => "roughness.profile",
+                    _ => "roughness.psd",
+                };
+                Error::Input {
+                    path: scene.clone(),
+                    line: *line,
+                    msg: format!("{key}: cannot read {}: {source}", path.display()),
+                }
+            }
+            (e, _) => e,
+        }
+    }
+
+    /// The spectrum of `source` (read, restricted to [q_min, q_max], scaled) with the reader's
+    /// warnings. A scene that lists several files is run file by file: [`Roughness::each_file`].
     pub fn spectrum(&self) -> Result<(Spectrum, Vec<String>), Error> {
+        self.spectrum_unlocated().map_err(|e| self.locate(e))
+    }
+
+    fn spectrum_unlocated(&self) -> Result<(Spectrum, Vec<String>), Error> {
         let (base, warnings) = match &self.source {
             RoughnessSource::Measured { path } => {
                 let (t, w) = read_spectrum(path, &ReadOptions::default())?;
@@ -341,6 +405,8 @@ impl Roughness {
 pub struct Scene {
     /// The scene file, if any.
     pub file: Option<PathBuf>,
+    /// The coatcheck version the design was qualified with (`coatcheck_version`), if pinned.
+    pub coatcheck_version: Option<String>,
     pub roughness: Roughness,
     pub film: Material,
     /// Film thickness (m); may be absent when only a sweep is asked for.
@@ -354,6 +420,29 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// A warning when the scene pins a coatcheck version other than this one.
+    pub fn version_warning(&self) -> Option<String> {
+        let pinned = self.coatcheck_version.as_deref()?;
+        let running = env!("CARGO_PKG_VERSION");
+        (pinned != running).then(|| {
+            format!(
+                "the scene pins coatcheck_version = \"{pinned}\" but this is coatcheck {running}: re-qualify the design and update the pin"
+            )
+        })
+    }
+
+    /// One scene per roughness file (the scene itself when it has one file or a model).
+    pub fn each_file(&self) -> Vec<Scene> {
+        self.roughness
+            .each_file()
+            .into_iter()
+            .map(|roughness| Scene {
+                roughness,
+                ..self.clone()
+            })
+            .collect()
+    }
+
     /// The design (without thickness) for [`crate::check::Checker`].
     pub fn design(&self) -> Design {
         Design {
@@ -410,6 +499,27 @@ pub fn resolve(
             ));
         }
     }
+    let coatcheck_version = match &raw.coatcheck_version {
+        Some(v) => {
+            let text = ctx.text(v, "coatcheck_version")?.trim();
+            let valid = text.split('.').count() == 3
+                && text
+                    .split('.')
+                    .all(|p| !p.is_empty() && p.chars().all(|c| c.is_ascii_digit()));
+            if !valid {
+                return Err(ctx.error(
+                    &v.origin,
+                    "coatcheck_version",
+                    format!(
+                        "'{text}' (expected a version like \"{}\")",
+                        env!("CARGO_PKG_VERSION")
+                    ),
+                ));
+            }
+            Some(text.to_string())
+        }
+        None => None,
+    };
     for group in EXCLUSIVE {
         let given: Vec<(&str, &Field)> = group
             .iter()
@@ -547,6 +657,7 @@ pub fn resolve(
     }
     Ok(Scene {
         file: file.map(Path::to_path_buf),
+        coatcheck_version,
         roughness,
         film,
         thickness,
@@ -588,13 +699,24 @@ fn resolve_roughness(r: &RawRoughness, ctx: Ctx<'_>) -> Result<Roughness, Error>
             format!("{b} 1/m is not above q_min = {a} 1/m"),
         ));
     }
-    let source = if let Some(f) = &r.psd {
-        RoughnessSource::Measured {
-            path: ctx.path(f, "roughness.psd")?,
+    let mut more_files = Vec::new();
+    let mut declared_at = None;
+    let source = if let Some((f, key)) = r
+        .psd
+        .as_ref()
+        .map(|f| (f, "roughness.psd"))
+        .or_else(|| r.profile.as_ref().map(|f| (f, "roughness.profile")))
+    {
+        let mut paths = file_list(ctx, f, key)?.into_iter();
+        if let (Origin::File(span), Some(src)) = (&f.origin, ctx.file) {
+            declared_at = Some((src.path.to_path_buf(), src.line_of(span.start)));
         }
-    } else if let Some(f) = &r.profile {
-        RoughnessSource::Profile {
-            path: ctx.path(f, "roughness.profile")?,
+        let first = paths.next().expect("file_list is never empty");
+        more_files.extend(paths);
+        if key == "roughness.psd" {
+            RoughnessSource::Measured { path: first }
+        } else {
+            RoughnessSource::Profile { path: first }
         }
     } else if let Some(f) = &r.model {
         let model = ctx.text(f, "roughness.model")?;
@@ -665,10 +787,43 @@ fn resolve_roughness(r: &RawRoughness, ctx: Ctx<'_>) -> Result<Roughness, Error>
     };
     Ok(Roughness {
         source,
+        more_files,
         scale,
         q_min,
         q_max,
+        declared_at,
     })
+}
+
+/// The file(s) of `roughness.psd` or `roughness.profile`: one path, or a non-empty list of
+/// distinct paths (each relative to the scene file).
+fn file_list(ctx: Ctx<'_>, f: &Field, key: &str) -> Result<Vec<PathBuf>, Error> {
+    let Raw::List(names) = &f.raw else {
+        return Ok(vec![ctx.path(f, key)?]);
+    };
+    if names.is_empty() {
+        return Err(ctx.error(
+            &f.origin,
+            key,
+            "empty list (expected one file name or a list of file names)",
+        ));
+    }
+    let mut paths: Vec<PathBuf> = Vec::with_capacity(names.len());
+    for name in names {
+        if name.trim().is_empty() {
+            return Err(ctx.error(&f.origin, key, "an empty file name in the list"));
+        }
+        let one = Field {
+            raw: Raw::Text(name.clone()),
+            origin: f.origin.clone(),
+        };
+        let path = ctx.path(&one, key)?;
+        if paths.contains(&path) {
+            return Err(ctx.error(&f.origin, key, format!("'{name}' is listed twice")));
+        }
+        paths.push(path);
+    }
+    Ok(paths)
 }
 
 #[allow(clippy::too_many_arguments)]

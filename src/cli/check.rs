@@ -1,7 +1,8 @@
 //! `coatcheck check`: judge one coating design (scene file and/or flags).
 
 use coatcheck::Error;
-use coatcheck::check::{Checker, log_space};
+use coatcheck::batch::{self, Judged, SceneRun};
+use coatcheck::check::{Checker, Outcome, log_space};
 use coatcheck::material::Library;
 use coatcheck::report::{self, Format};
 use coatcheck::scene::Scene;
@@ -20,7 +21,15 @@ Checks: bond-shear (peak interface shear vs bond strength), substrate-yield (mea
 pressure and peak interface normal stress vs yield), min-thickness (smallest film thickness
 above which every check passes at every thickness).
 
-Example: coatcheck check examples/paper-rubber-on-steel.toml --thickness 5um --format json";
+Example: coatcheck check examples/paper-rubber-on-steel.toml --thickness 5um --format json
+
+Batch: several scene files, or a directory of *.toml scenes, are judged in parallel and
+summarised in one table (failures first) or one record per scene (--format json|csv). Flags
+apply to every scene. Exit code 0 when every scene passes, 1 when any fails, 2 when any could
+not be evaluated (the others are still run and reported). --junit FILE writes a JUnit XML
+report (a test case per scene and check) for CI systems.
+
+Example: coatcheck check examples/specs/ --junit coatcheck-junit.xml";
 
 /// Arguments of `coatcheck check`.
 #[derive(clap::Args, Debug)]
@@ -28,6 +37,9 @@ Example: coatcheck check examples/paper-rubber-on-steel.toml --thickness 5um --f
 pub struct CheckArgs {
     /// Scene file (TOML); flags override its values.
     pub scene: Option<PathBuf>,
+    /// More scene files or directories of *.toml scenes: a batch run with a summary table.
+    #[arg(value_name = "MORE_SCENES")]
+    pub more_scenes: Vec<PathBuf>,
     /// Measured PSD file (columns q [1/m], C [m^4]); relative to the working directory.
     #[arg(long, allow_hyphen_values = true)]
     pub psd: Option<String>,
@@ -123,6 +135,13 @@ pub struct CheckArgs {
     /// one check; exit code 0 unless the input is bad.
     #[arg(long, value_name = "FROM:TO:N")]
     pub sweep_thickness: Option<String>,
+    /// Also write a JUnit XML report (a test case per scene and check), atomically.
+    #[arg(long, value_name = "FILE")]
+    pub junit: Option<PathBuf>,
+    /// Also write the results (one row per scene, or per thickness of a sweep) as Parquet,
+    /// atomically; needs a build with the cargo feature `parquet`.
+    #[arg(long, value_name = "FILE")]
+    pub parquet: Option<PathBuf>,
 }
 
 impl CheckArgs {
@@ -197,6 +216,12 @@ fn parse_sweep(text: &str) -> Result<(f64, f64, usize), Error> {
 
 /// Run the check; the exit code is 0 (pass) or 1 (fail).
 pub fn run(args: CheckArgs) -> Result<i32, Error> {
+    if args.parquet.is_some() && !coatcheck::parquet::AVAILABLE {
+        return Err(coatcheck::parquet::unavailable());
+    }
+    if is_batch(&args) {
+        return run_batch(&args);
+    }
     let library = Library::with_dir(args.materials.as_deref())?;
     let sweep = args
         .sweep_thickness
@@ -204,6 +229,12 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
         .map(parse_sweep)
         .transpose()?;
     let scene = Scene::load(args.scene.as_deref(), &args.overrides(), &library)?;
+    if let Some(w) = scene.version_warning() {
+        eprintln!("coatcheck: warning: {w}");
+    }
+    if !scene.roughness.more_files.is_empty() {
+        return run_files(&args, &scene, sweep.is_some());
+    }
     let (spectrum, read_warnings) = scene.roughness.spectrum()?;
     for w in &read_warnings {
         eprintln!("coatcheck: warning: {w}");
@@ -211,6 +242,9 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
     let checker = Checker::new(&spectrum, scene.design(), scene.settings)?;
     let (text, code) = if let Some((from, to, n)) = sweep {
         let rows = checker.sweep(&log_space(from, to, n))?;
+        if let Some(path) = &args.parquet {
+            coatcheck::parquet::write_sweep(path, &rows)?;
+        }
         (report::sweep(&rows, args.format)?, 0)
     } else {
         let thickness = scene.thickness.ok_or_else(|| Error::Value {
@@ -221,6 +255,7 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
             msg: "film.thickness is missing; give the film thickness (thickness = \"10 um\" under [film], or --thickness 10um)".into(),
         })?;
         let outcome = checker.run(thickness)?;
+        write_single_extras(&args, &scene, &outcome)?;
         let text = match args.format {
             Format::Table => report::human(&scene, &outcome),
             Format::Json => format!("{:#}\n", report::json(&scene, &outcome)),
@@ -240,4 +275,146 @@ pub fn emit(text: &str) {
     use std::io::Write;
     let mut out = std::io::stdout().lock();
     let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+}
+
+/// Several scenes, or a directory: a batch.
+fn is_batch(args: &CheckArgs) -> bool {
+    !args.more_scenes.is_empty() || args.scene.as_ref().is_some_and(|p| p.is_dir())
+}
+
+/// `--junit` and `--parquet` for one scene: a batch of one.
+fn write_single_extras(args: &CheckArgs, scene: &Scene, outcome: &Outcome) -> Result<(), Error> {
+    if args.junit.is_none() && args.parquet.is_none() {
+        return Ok(());
+    }
+    let run = SceneRun {
+        file: scene.file.clone().unwrap_or_else(|| PathBuf::from("scene")),
+        seconds: 0.0,
+        result: Ok(Judged {
+            scene: scene.clone(),
+            outcome: outcome.clone(),
+            files: Vec::new(),
+            warnings: outcome.warnings.clone(),
+        }),
+    };
+    write_batch_extras(args, std::slice::from_ref(&run))
+}
+
+fn write_batch_extras(args: &CheckArgs, runs: &[SceneRun]) -> Result<(), Error> {
+    if let Some(path) = &args.junit {
+        report::write_atomic(path, &coatcheck::junit::report(runs)?)?;
+    }
+    if let Some(path) = &args.parquet {
+        coatcheck::parquet::write_batch(path, runs)?;
+    }
+    Ok(())
+}
+
+/// One scene that lists several roughness files: the detailed report of the worst file, after
+/// a table of every file's verdict.
+fn run_files(args: &CheckArgs, scene: &Scene, sweep: bool) -> Result<i32, Error> {
+    if sweep {
+        return Err(Error::Value {
+            origin: "--sweep-thickness".into(),
+            msg: format!(
+                "a sweep runs on one roughness file; this scene lists {} (give one with --psd or --profile)",
+                1 + scene.roughness.more_files.len()
+            ),
+        });
+    }
+    let start = std::time::Instant::now();
+    let judged = batch::judge(scene)?;
+    let run = SceneRun {
+        file: scene.file.clone().unwrap_or_else(|| PathBuf::from("scene")),
+        seconds: start.elapsed().as_secs_f64(),
+        result: Ok(judged),
+    };
+    let Ok(j) = &run.result else {
+        unreachable!("judged above")
+    };
+    let worst = j.worst_file().map(|p| p.display().to_string());
+    let text = match args.format {
+        Format::Table => format!(
+            "{}{}",
+            batch::files_table(j),
+            report::human(&j.scene, &j.outcome)
+        ),
+        Format::Json => {
+            let mut v = report::json(&j.scene, &j.outcome);
+            v["worst_file"] = serde_json::json!(worst);
+            v["files"] = serde_json::json!(j.files);
+            v["warnings"] = serde_json::json!(j.warnings);
+            format!("{v:#}\n")
+        }
+        Format::Csv => {
+            let mut text = report::csv(&j.scene, &j.outcome)?;
+            text += &format!("worst_file,{},,\n", worst.unwrap_or_default());
+            text
+        }
+    };
+    write_batch_extras(args, std::slice::from_ref(&run))?;
+    match &args.output {
+        Some(path) => report::write_atomic(path, &text)?,
+        None => emit(&text),
+    }
+    Ok(if j.outcome.pass { 0 } else { 1 })
+}
+
+/// Several scenes or a directory: judged in parallel, one summary (failures first), exit code
+/// 0 all pass, 1 any fails, 2 any could not be evaluated.
+fn run_batch(args: &CheckArgs) -> Result<i32, Error> {
+    if args.sweep_thickness.is_some() {
+        return Err(Error::Value {
+            origin: "--sweep-thickness".into(),
+            msg: "a sweep runs on one scene; give one scene file".into(),
+        });
+    }
+    let library = Library::with_dir(args.materials.as_deref())?;
+    let inputs: Vec<PathBuf> = args
+        .scene
+        .iter()
+        .chain(&args.more_scenes)
+        .cloned()
+        .collect();
+    let files = batch::scene_files(&inputs)?;
+    let start = std::time::Instant::now();
+    let progress = progress_bar(files.len());
+    let runs = batch::run_all(&files, &args.overrides(), &library, &|| progress.inc(1));
+    progress.finish_and_clear();
+    let seconds = start.elapsed().as_secs_f64();
+    let text = match args.format {
+        Format::Table => batch::summary(&runs, seconds),
+        Format::Json => batch::json(&runs),
+        Format::Csv => batch::csv(&runs)?,
+    };
+    // The table lists the errors; other formats and files get them on standard error.
+    if args.format != Format::Table || args.output.is_some() {
+        for run in &runs {
+            if let Err(e) = &run.result {
+                eprintln!("coatcheck: {e}");
+            }
+        }
+    }
+    write_batch_extras(args, &runs)?;
+    match &args.output {
+        Some(path) => report::write_atomic(path, &text)?,
+        None => emit(&text),
+    }
+    Ok(batch::Totals::of(&runs).exit_code())
+}
+
+/// A progress bar on standard error for batches of more than a few scenes; hidden when
+/// standard error is not a terminal (CI logs, pipes).
+fn progress_bar(n: usize) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if n < 4 || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(n as u64);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} scenes ({eta} left)",
+    ) {
+        bar.set_style(style);
+    }
+    bar
 }

@@ -1,0 +1,113 @@
+//! JUnit XML of a batch (issue 7), for CI systems that display test reports natively. Written
+//! with `quick-junit` (the serializer cargo-nextest uses: escaping, counts and the Jenkins
+//! schema handled there).
+//!
+//! Layout: one `<testsuite>` per scene (named by its file), one `<testcase>` per enabled check
+//! (`bond-shear`, `substrate-yield`, `min-thickness`; classname = the scene file). A failing
+//! check is a `<failure>` whose message carries the value, the limit and the margin (human
+//! units; SI in the text node); a scene that could not be evaluated is one `<testcase
+//! name="evaluate">` with an `<error>` carrying the message (file and line). Warnings go to the
+//! suite's `<system-out>`.
+
+use crate::batch::SceneRun;
+use crate::check::{CheckKind, CheckResult};
+use crate::error::Error;
+use crate::report::sig;
+use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
+use std::time::Duration;
+
+/// A check's value or limit in human units (MPa for stresses, µm for thickness).
+fn human(kind: CheckKind, x: f64) -> String {
+    match kind {
+        CheckKind::MinThickness => format!("{} um", sig(x * 1e6, 4)),
+        _ => format!("{} MPa", sig(x * 1e-6, 4)),
+    }
+}
+
+/// The failure message of a check: the numbers that decide it.
+pub fn failure_message(c: &CheckResult) -> String {
+    let v = human(c.kind, c.value.value);
+    match (c.kind, c.limit, c.margin) {
+        (CheckKind::MinThickness, Some(l), Some(m)) => format!(
+            "min-thickness: thickness {v} is below d_min = {} (margin {:+.1} %)",
+            human(c.kind, l),
+            100.0 * m
+        ),
+        (CheckKind::MinThickness, _, _) => {
+            format!("min-thickness: no film thickness passes (thickness {v})")
+        }
+        (k, Some(l), Some(m)) => format!(
+            "{}: {v} exceeds the limit {} (margin {:+.1} %)",
+            k.name(),
+            human(k, l),
+            100.0 * m
+        ),
+        (k, _, _) => format!("{}: {v} (no limit)", k.name()),
+    }
+}
+
+/// The JUnit XML of a batch.
+pub fn report(runs: &[SceneRun]) -> Result<String, Error> {
+    let mut report = Report::new("coatcheck check");
+    let mut total = 0.0;
+    for run in runs {
+        let name = run.file.display().to_string();
+        let mut suite = TestSuite::new(name.as_str());
+        suite.set_time(Duration::from_secs_f64(run.seconds));
+        total += run.seconds;
+        match &run.result {
+            Err(e) => {
+                let mut status = TestCaseStatus::non_success(NonSuccessKind::Error);
+                status
+                    .set_message(e.to_string())
+                    .set_type("could not be evaluated");
+                let mut case = TestCase::new("evaluate", status);
+                case.set_classname(name.as_str());
+                suite.add_test_case(case);
+            }
+            Ok(j) => {
+                let worst = j
+                    .worst_file()
+                    .map(|f| format!(" [worst of {} files: {}]", j.files.len(), f.display()));
+                for c in &j.outcome.checks {
+                    let status = if c.pass {
+                        TestCaseStatus::success()
+                    } else {
+                        let mut s = TestCaseStatus::non_success(NonSuccessKind::Failure);
+                        s.set_message(format!(
+                            "{}{}",
+                            failure_message(c),
+                            worst.as_deref().unwrap_or("")
+                        ))
+                        .set_type("check failed")
+                        .set_description(format!(
+                            "value = {:e} ± {:e} (SI), limit = {}, margin = {}",
+                            c.value.value,
+                            c.value.err,
+                            c.limit.map_or("none".into(), |l| format!("{l:e}")),
+                            c.margin.map_or("none".into(), |m| format!("{m:.4}")),
+                        ));
+                        s
+                    };
+                    let mut case = TestCase::new(c.kind.name(), status);
+                    case.set_classname(name.as_str());
+                    suite.add_test_case(case);
+                }
+                if !j.warnings.is_empty() {
+                    suite.set_system_out(
+                        j.warnings
+                            .iter()
+                            .map(|w| format!("warning: {w}\n"))
+                            .collect::<String>(),
+                    );
+                }
+            }
+        }
+        report.add_test_suite(suite);
+    }
+    report.set_time(Duration::from_secs_f64(total));
+    report.to_string().map_err(|e| Error::Numerical {
+        what: "JUnit output",
+        detail: e.to_string(),
+    })
+}

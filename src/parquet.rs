@@ -1,0 +1,151 @@
+//! Parquet output of batch and sweep results (`check --parquet FILE`), for data teams: polars
+//! (the project's chosen dataframe library) behind the opt-in cargo feature `parquet`. The
+//! default build has no polars; there `--parquet` is refused before anything runs.
+//!
+//! Columns: a batch has one row per scene with the columns of [`crate::batch::COLUMNS`] (SI
+//! units; text, f64 and u64 columns, nulls where a value does not apply); a sweep has one row
+//! per thickness: `thickness_m`, the sweep quantities of `report::sweep` and `<check>_pass` for
+//! the stress checks. Files are written atomically (a temporary file in the same directory,
+//! renamed when complete).
+
+use crate::batch::SceneRun;
+use crate::check::Evaluation;
+use crate::error::Error;
+use std::path::Path;
+
+/// Whether this build writes Parquet.
+pub const AVAILABLE: bool = cfg!(feature = "parquet");
+
+/// The error for `--parquet` in a build without the feature.
+pub fn unavailable() -> Error {
+    Error::Value {
+        origin: "--parquet".into(),
+        msg: "this coatcheck was built without Parquet support; rebuild with `cargo build --release --features parquet`".into(),
+    }
+}
+
+#[cfg(feature = "parquet")]
+mod imp {
+    use super::*;
+    use crate::batch::{COLUMNS, Cell, Record};
+    use crate::check::CheckKind;
+    use polars::prelude::{Column, DataFrame, ParquetWriter};
+    use std::io::Write;
+
+    /// One column's values.
+    enum Data {
+        Text(Vec<Option<String>>),
+        Number(Vec<Option<f64>>),
+        Count(Vec<u64>),
+        Flag(Vec<Option<bool>>),
+    }
+
+    impl Data {
+        fn push(&mut self, cell: Cell) {
+            match (self, cell) {
+                (Data::Text(v), Cell::Text(t)) => v.push(t),
+                (Data::Number(v), Cell::Number(x)) => v.push(x),
+                (Data::Count(v), Cell::Count(n)) => v.push(n),
+                _ => unreachable!("a column's getter returns one kind of cell"),
+            }
+        }
+
+        fn column(self, name: &str) -> Column {
+            match self {
+                Data::Text(v) => Column::new(name.into(), v),
+                Data::Number(v) => Column::new(name.into(), v),
+                Data::Count(v) => Column::new(name.into(), v),
+                Data::Flag(v) => Column::new(name.into(), v),
+            }
+        }
+    }
+
+    fn polars_error(path: &Path, e: impl std::fmt::Display) -> Error {
+        Error::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::other(e.to_string()),
+        }
+    }
+
+    fn write(path: &Path, height: usize, columns: Vec<Column>) -> Result<(), Error> {
+        let mut df = DataFrame::new(height, columns).map_err(|e| polars_error(path, e))?;
+        let io = |source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
+        ParquetWriter::new(tmp.as_file_mut())
+            .finish(&mut df)
+            .map_err(|e| polars_error(path, e))?;
+        tmp.as_file_mut().flush().map_err(io)?;
+        tmp.as_file().sync_all().map_err(io)?;
+        tmp.persist(path).map_err(|e| io(e.error))?;
+        Ok(())
+    }
+
+    pub fn write_batch(path: &Path, runs: &[SceneRun]) -> Result<(), Error> {
+        let records: Vec<Record> = runs.iter().map(Record::of).collect();
+        let columns = COLUMNS
+            .iter()
+            .map(|(name, get)| {
+                let mut data = match get(&Record::default()) {
+                    Cell::Text(_) => Data::Text(Vec::new()),
+                    Cell::Number(_) => Data::Number(Vec::new()),
+                    Cell::Count(_) => Data::Count(Vec::new()),
+                };
+                for r in &records {
+                    data.push(get(r));
+                }
+                data.column(name)
+            })
+            .collect();
+        write(path, records.len(), columns)
+    }
+
+    pub fn write_sweep(path: &Path, rows: &[Evaluation]) -> Result<(), Error> {
+        let mut columns = vec![Column::new(
+            "thickness_m".into(),
+            rows.iter()
+                .map(|e| e.contact.thickness)
+                .collect::<Vec<f64>>(),
+        )];
+        for (_, key, get) in crate::report::SWEEP {
+            columns.push(Data::Number(rows.iter().map(get).collect()).column(key));
+        }
+        for kind in [CheckKind::BondShear, CheckKind::SubstrateYield] {
+            let pass = rows
+                .iter()
+                .map(|e| e.checks.iter().find(|c| c.kind == kind).map(|c| c.pass))
+                .collect();
+            let name = format!("{}_pass", kind.name().replace('-', "_"));
+            columns.push(Data::Flag(pass).column(&name));
+        }
+        write(path, rows.len(), columns)
+    }
+}
+
+/// Write a batch as Parquet (one row per scene).
+pub fn write_batch(path: &Path, runs: &[SceneRun]) -> Result<(), Error> {
+    #[cfg(feature = "parquet")]
+    return imp::write_batch(path, runs);
+    #[cfg(not(feature = "parquet"))]
+    {
+        let _ = (path, runs);
+        Err(unavailable())
+    }
+}
+
+/// Write a thickness sweep as Parquet (one row per thickness).
+pub fn write_sweep(path: &Path, rows: &[Evaluation]) -> Result<(), Error> {
+    #[cfg(feature = "parquet")]
+    return imp::write_sweep(path, rows);
+    #[cfg(not(feature = "parquet"))]
+    {
+        let _ = (path, rows);
+        Err(unavailable())
+    }
+}
