@@ -1,4 +1,5 @@
 //! Integration tests: one binary, one module per area.
+mod batch;
 mod bem;
 mod check;
 mod cli_check;
