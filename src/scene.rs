@@ -343,9 +343,19 @@ impl Roughness {
         all
     }
 
-    /// A file that cannot be read is reported at the scene line that named it.
+    /// A file that cannot be read, or whose data do not fit the scene's q-range, is reported
+    /// at the scene line that named it.
     fn locate(&self, e: Error) -> Error {
         match (e, &self.declared_at) {
+            (e @ Error::Invalid { .. }, Some((scene, line))) => Error::Input {
+                path: scene.clone(),
+                line: *line,
+                msg: format!(
+                    "{}: {e}",
+                    self.file()
+                        .map_or(String::new(), |p| p.display().to_string())
+                ),
+            },
             (Error::Io { path, source }, Some((scene, line))) => {
                 let key = match self.source {
                     RoughnessSource::Profile { .. } => "roughness.profile",
@@ -777,6 +787,36 @@ fn resolve_roughness(r: &RawRoughness, ctx: Ctx<'_>) -> Result<Roughness, Error>
                 "roughness.model",
                 "a model needs rms_slope or rms_height to set its amplitude",
             ));
+        }
+        // The model's own domain checks (H in (0, 1], q0 < q_r < q1, a band away from 0),
+        // reported at the offending key's line.
+        let built = match &src {
+            RoughnessSource::SelfAffine {
+                hurst,
+                q0,
+                q1,
+                roll_off,
+            } => Spectrum::self_affine(*hurst, *q0, *q1, *roll_off).map(drop),
+            RoughnessSource::Gaussian { q0, width } => Spectrum::gaussian(*q0, *width).map(drop),
+            _ => Ok(()),
+        };
+        if let Err(e) = built {
+            let (key, field) = match &e {
+                Error::Invalid { what, .. } if what.starts_with("Hurst") => {
+                    ("roughness.hurst", &r.hurst)
+                }
+                Error::Invalid { what: "q0", .. } => ("roughness.q0", &r.q0),
+                Error::Invalid { what: "q1", .. } => ("roughness.q1", &r.q1),
+                Error::Invalid { what, .. } if what.starts_with("roll-off") => {
+                    ("roughness.roll_off", &r.roll_off)
+                }
+                Error::Invalid { what, .. } if what.starts_with("Gaussian width") => {
+                    ("roughness.width", &r.width)
+                }
+                _ => ("roughness.model", &r.model),
+            };
+            let origin = field.as_ref().map_or(&f.origin, |g| &g.origin);
+            return Err(ctx.error(origin, key, e));
         }
         src
     } else {

@@ -475,6 +475,16 @@ pub fn parse_spectrum(
         };
         let q = value(qi, "q")? * q_scale;
         let c = value(ci, "C")? * c_scale;
+        if !(q.is_finite() && q > 0.0 && c.is_finite() && c > 0.0) {
+            return Err(err(
+                ln,
+                format!(
+                    "q = {}, C = {} are q = {q:e} 1/m, C = {c:e} m^4 in SI units, outside the \
+                     floating-point range; expected values that are finite and > 0 in SI",
+                    fields[qi], fields[ci]
+                ),
+            ));
+        }
         rows.push((q, c, ln));
     }
     if rows.len() < 2 {

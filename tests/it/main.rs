@@ -5,6 +5,7 @@ mod check;
 mod cli_check;
 mod cli_response;
 mod contact;
+mod fuzz;
 mod layer;
 mod psd_convert;
 mod psd_read;
