@@ -511,3 +511,87 @@ fn the_example_specs_directory() {
         "{err}"
     );
 }
+
+/// With the `parquet` feature: the batch and a sweep written as Parquet read back with polars
+/// itself, one row per scene (per thickness), the same numbers as the JSON records.
+#[cfg(feature = "parquet")]
+#[test]
+fn parquet_reads_back_with_polars() {
+    use polars::prelude::{ParquetReader, SerReader};
+    let read = |path: &Path| {
+        ParquetReader::new(std::fs::File::open(path).unwrap())
+            .finish()
+            .unwrap()
+    };
+    let d = dir_with(&[
+        ("a.toml", scene(PASS)),
+        ("b.toml", scene(FAIL)),
+        ("c.toml", scene(PASS).replace("[load]", "[lod]")),
+    ]);
+    let out = tempfile::tempdir().unwrap();
+    let pq = out.path().join("batch.parquet");
+    let o = run(&[
+        "check",
+        d.path().to_str().unwrap(),
+        "--format",
+        "json",
+        "--parquet",
+        pq.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let v = json(&o);
+    let df = read(&pq);
+    assert_eq!(df.height(), 3);
+    let verdicts: Vec<&str> = df
+        .column("verdict")
+        .unwrap()
+        .str()
+        .unwrap()
+        .into_iter()
+        .map(Option::unwrap)
+        .collect();
+    assert_eq!(verdicts, ["fail", "error", "pass"]);
+    let margins: Vec<Option<f64>> = df
+        .column("margin")
+        .unwrap()
+        .f64()
+        .unwrap()
+        .into_iter()
+        .collect();
+    for (i, m) in margins.iter().enumerate() {
+        assert_eq!(*m, v["scenes"][i]["margin"].as_f64(), "row {i}");
+    }
+    assert_eq!(margins[1], None, "the broken scene has no margin");
+    let errors = df.column("error").unwrap().str().unwrap();
+    assert!(errors.get(1).unwrap().contains("c.toml:14:"));
+    assert_eq!(df.column("files").unwrap().u64().unwrap().get(0), Some(1));
+    // Atomic: only the file itself.
+    assert_eq!(std::fs::read_dir(out.path()).unwrap().count(), 1);
+
+    // A sweep: one row per thickness, log-spaced.
+    let sweep = out.path().join("sweep.parquet");
+    let o = run(&[
+        "check",
+        &p(d.path(), "a.toml"),
+        "--sweep-thickness",
+        "1um:100um:3",
+        "--parquet",
+        sweep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let df = read(&sweep);
+    assert_eq!(df.height(), 3);
+    let d: Vec<f64> = df
+        .column("thickness_m")
+        .unwrap()
+        .f64()
+        .unwrap()
+        .into_iter()
+        .map(Option::unwrap)
+        .collect();
+    assert!((d[1] / 1e-5 - 1.0).abs() < 1e-12, "{d:?}");
+    let tau = df.column("tau_rms_interface_pa").unwrap().f64().unwrap();
+    assert!(tau.into_iter().all(|t| t.is_some_and(|t| t > 0.0)));
+    let pass = df.column("bond_shear_pass").unwrap().bool().unwrap();
+    assert_eq!(pass.len(), 3);
+}

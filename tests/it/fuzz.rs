@@ -5,8 +5,8 @@
 //!
 //! Inputs are generated from the grammar the readers accept (numbers of every shape, units,
 //! separators, headers, comments, BOM, CRLF) mixed with arbitrary text, so that most cases get
-//! past the first line. The case count is bounded for CI; a long run sets it by environment:
-//! `COATCHECK_FUZZ_CASES=100000 cargo test --release --test it fuzz`.
+//! past the first line. The case counts are bounded for CI (about a second in all); a long run
+//! multiplies them: `COATCHECK_FUZZ_SCALE=1000 cargo test --test it fuzz`.
 //! Failures found are kept below as plain regression tests.
 
 use coatcheck::Error;
@@ -19,14 +19,14 @@ use proptest::prelude::*;
 use std::path::Path;
 use std::sync::OnceLock;
 
-/// Cases per property: `default` unless `COATCHECK_FUZZ_CASES` says otherwise.
+/// Cases per property: `default` times `COATCHECK_FUZZ_SCALE` (1 in CI).
 fn config(default: u32) -> ProptestConfig {
-    let cases = std::env::var("COATCHECK_FUZZ_CASES")
+    let scale: u32 = std::env::var("COATCHECK_FUZZ_SCALE")
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(default);
+        .unwrap_or(1);
     ProptestConfig {
-        cases,
+        cases: default.saturating_mul(scale),
         // Shrinking a failure can take long; the first counterexample is kept as it is.
         max_shrink_iters: 256,
         ..ProptestConfig::default()
