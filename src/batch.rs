@@ -536,3 +536,40 @@ pub fn files_table(j: &Judged) -> String {
         .map_or(String::new(), |p| p.display().to_string());
     format!("{t}\nworst file: {worst} (its full report follows)\n")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn directories_give_their_toml_files_in_name_order() {
+        let dir = tempfile::tempdir().unwrap();
+        for name in ["b.toml", "a.toml", "notes.md", "c.toml.bak"] {
+            std::fs::write(dir.path().join(name), "").unwrap();
+        }
+        std::fs::create_dir(dir.path().join("sub.toml")).unwrap();
+        let extra = PathBuf::from("x/given.toml");
+        let files = scene_files(&[dir.path().to_path_buf(), extra.clone()]).unwrap();
+        assert_eq!(
+            files,
+            [dir.path().join("a.toml"), dir.path().join("b.toml"), extra]
+        );
+        let empty = tempfile::tempdir().unwrap();
+        let e = scene_files(&[empty.path().to_path_buf()]).unwrap_err();
+        assert!(e.to_string().contains("no scene files"), "{e}");
+    }
+
+    #[test]
+    fn exit_code_is_the_worst_verdict() {
+        let t = |pass, fail, error| Totals {
+            scenes: pass + fail + error,
+            pass,
+            fail,
+            error,
+        };
+        assert_eq!(t(3, 0, 0).exit_code(), 0);
+        assert_eq!(t(3, 1, 0).exit_code(), 1);
+        assert_eq!(t(3, 1, 1).exit_code(), 2);
+        assert_eq!(t(0, 0, 1).exit_code(), 2);
+    }
+}
