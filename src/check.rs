@@ -488,7 +488,7 @@ impl Checker {
             return Err(Error::Numerical {
                 what: "design check",
                 detail: format!(
-                    "{}: value {} ± {}, margin {:?} at d = {thickness} m",
+                    "{}: value {:e} ± {:e}, margin {:?} at d = {thickness:e} m",
                     c.kind.name(),
                     c.value.value,
                     c.value.err,

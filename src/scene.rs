@@ -401,11 +401,36 @@ impl Roughness {
             } => (Spectrum::self_affine(*hurst, *q0, *q1, *roll_off)?, vec![]),
             RoughnessSource::Gaussian { q0, width } => (Spectrum::gaussian(*q0, *width)?, vec![]),
         };
+        let (lo, hi) = base.support();
+        if q_out_of_range(lo) || q_out_of_range(hi) {
+            return Err(Error::invalid(
+                "wavenumber range of the spectrum (1/m)",
+                match self.file() {
+                    Some(p) => format!("{lo:e} to {hi:e} in {}", p.display()),
+                    None => format!("{lo:e} to {hi:e}"),
+                },
+                "wavenumbers within 1e-6 to 1e12 1/m (check the q column's unit)",
+            ));
+        }
         let s = match self.scale {
             Some(Scale::RmsSlope(xi)) => base.scaled_to_rms_slope(xi)?,
             Some(Scale::RmsHeight(h)) => base.scaled_to_rms_height(h)?,
             None => base,
         };
+        // The same bounds as a given rms slope: C far off (a wrong unit) fails here, named.
+        let slope = s.slope_sq().value.sqrt();
+        if let Some(&(_, lo, hi)) = RANGES.iter().find(|(k, _, _)| *k == "roughness.rms_slope")
+            && !(lo..=hi).contains(&slope)
+        {
+            return Err(Error::invalid(
+                "rms slope of the spectrum",
+                match self.file() {
+                    Some(p) => format!("{slope:e} for {}", p.display()),
+                    None => format!("{slope:e}"),
+                },
+                "an rms slope within 1e-12 to 1e3 (check the C column's unit)",
+            ));
+        }
         Ok((s, warnings))
     }
 }
@@ -557,7 +582,7 @@ pub fn resolve(
         Kind::Film,
     )?;
     let thickness = match &raw.film.thickness {
-        Some(f) => Some(ctx.positive(f, "film.thickness", Dim::Length(1))?),
+        Some(f) => Some(ranged(ctx, f, "film.thickness", Dim::Length(1))?),
         None => None,
     };
     let substrate = resolve_material(
@@ -580,7 +605,7 @@ pub fn resolve(
         }
         (None, Some(f)) => Bond {
             name: "custom".into(),
-            shear_strength: ctx.positive(f, "bond.shear_strength", Dim::Pressure)?,
+            shear_strength: ranged(ctx, f, "bond.shear_strength", Dim::Pressure)?,
             source: "given in the scene".into(),
         },
         (None, None) => {
@@ -591,7 +616,7 @@ pub fn resolve(
         }
     };
     let pressure = match &raw.load.pressure {
-        Some(f) => ctx.positive(f, "load.pressure", Dim::Pressure)?,
+        Some(f) => ranged(ctx, f, "load.pressure", Dim::Pressure)?,
         None => {
             return Err(ctx.missing(
                 "load.pressure",
@@ -682,16 +707,18 @@ pub fn resolve(
 fn resolve_roughness(r: &RawRoughness, ctx: Ctx<'_>) -> Result<Roughness, Error> {
     let wavenumber = |f: &Option<Field>, key: &str| -> Result<Option<f64>, Error> {
         f.as_ref()
-            .map(|f| ctx.positive(f, key, Dim::Length(-1)))
+            .map(|f| wavenumber_in_range(ctx, f, key))
             .transpose()
     };
     let scale = match (&r.rms_slope, &r.rms_height) {
-        (Some(f), _) => Some(Scale::RmsSlope(ctx.positive(
+        (Some(f), _) => Some(Scale::RmsSlope(ranged(
+            ctx,
             f,
             "roughness.rms_slope",
             Dim::Dimensionless,
         )?)),
-        (None, Some(f)) => Some(Scale::RmsHeight(ctx.positive(
+        (None, Some(f)) => Some(Scale::RmsHeight(ranged(
+            ctx,
             f,
             "roughness.rms_height",
             Dim::Length(1),
@@ -732,6 +759,7 @@ fn resolve_roughness(r: &RawRoughness, ctx: Ctx<'_>) -> Result<Roughness, Error>
         let model = ctx.text(f, "roughness.model")?;
         let need = |g: &Option<Field>, key: &str, dim: Dim| -> Result<f64, Error> {
             match g {
+                Some(g) if dim == Dim::Length(-1) => wavenumber_in_range(ctx, g, key),
                 Some(g) => ctx.positive(g, key, dim),
                 None => Err(ctx.error(
                     &f.origin,
@@ -835,6 +863,59 @@ fn resolve_roughness(r: &RawRoughness, ctx: Ctx<'_>) -> Result<Roughness, Error>
     })
 }
 
+/// Accepted ranges of scene values (SI): far wider than any coating design, and well inside the
+/// floating-point range of the contact integrals. A value beyond them is a typo or a wrong
+/// unit, rejected at its line rather than overflowing later.
+pub const RANGES: &[(&str, f64, f64)] = &[
+    ("film.thickness", 1e-10, 10.0),
+    ("load.pressure", 1.0, 1e12),
+    ("bond.shear_strength", 1.0, 1e12),
+    ("substrate.yield_strength", 1.0, 1e12),
+    ("film.youngs_modulus", 1.0, 1e13),
+    ("substrate.youngs_modulus", 1.0, 1e13),
+    ("roughness.rms_slope", 1e-12, 1e3),
+    ("roughness.rms_height", 1e-15, 1.0),
+];
+
+/// A value > 0 within its [`RANGES`] entry.
+fn ranged(ctx: Ctx<'_>, f: &Field, key: &str, dim: Dim) -> Result<f64, Error> {
+    let v = ctx.positive(f, key, dim)?;
+    if let Some(&(_, lo, hi)) = RANGES.iter().find(|(k, _, _)| *k == key)
+        && !(lo..=hi).contains(&v)
+    {
+        return Err(ctx.error(
+            &f.origin,
+            key,
+            format!("{v:e} (SI) is outside the accepted range {lo:e} to {hi:e}; check the value and its unit"),
+        ));
+    }
+    Ok(v)
+}
+
+/// The wavenumbers the tool models (1/m): wavelengths 2π/q from about 6 pm to 6000 km. Far
+/// outside any surface, and well inside the floating-point range of the moments of C(q)
+/// (q^4 C, q^6 C); a value beyond them is a typo or a wrong unit.
+pub const Q_RANGE: (f64, f64) = (1e-6, 1e12);
+
+fn q_out_of_range(q: f64) -> bool {
+    !(Q_RANGE.0..=Q_RANGE.1).contains(&q)
+}
+
+fn wavenumber_in_range(ctx: Ctx<'_>, f: &Field, key: &str) -> Result<f64, Error> {
+    let q = ctx.positive(f, key, Dim::Length(-1))?;
+    if q_out_of_range(q) {
+        return Err(ctx.error(
+            &f.origin,
+            key,
+            format!(
+                "{q:e} 1/m is outside the wavenumbers this tool models ({:e} to {:e} 1/m); check the value and its unit",
+                Q_RANGE.0, Q_RANGE.1
+            ),
+        ));
+    }
+    Ok(q)
+}
+
 /// The file(s) of `roughness.psd` or `roughness.profile`: one path, or a non-empty list of
 /// distinct paths (each relative to the scene file).
 fn file_list(ctx: Ctx<'_>, f: &Field, key: &str) -> Result<Vec<PathBuf>, Error> {
@@ -887,7 +968,7 @@ fn resolve_material(
                 .clone()
         }
         (None, Some(fe), Some(fnu)) => {
-            let e = ctx.positive(fe, &key("youngs_modulus"), Dim::Pressure)?;
+            let e = ranged(ctx, fe, &key("youngs_modulus"), Dim::Pressure)?;
             let nu = ctx.quantity(fnu, &key("poisson_ratio"), Dim::Dimensionless)?;
             let elastic = Elastic::new(e, nu)
                 .map_err(|err| ctx.error(&fnu.origin, &key("poisson_ratio"), err))?;
@@ -914,7 +995,7 @@ fn resolve_material(
         }
     };
     if let Some(f) = yield_strength {
-        m.yield_strength = Some(ctx.positive(f, &key("yield_strength"), Dim::Pressure)?);
+        m.yield_strength = Some(ranged(ctx, f, &key("yield_strength"), Dim::Pressure)?);
     }
     Ok(m)
 }

@@ -573,3 +573,60 @@ fn model_domain_errors_name_the_key_and_line() {
         .to_string();
     assert!(e.contains("fuzz.toml:5: roughness.width"), "{e}");
 }
+
+/// Found by `scene_reader_loads_or_names_file_and_line` (long run): absurd magnitudes (a
+/// wavenumber of 1e308 1/m, an rms slope of 1e308) passed the scene reader and overflowed in
+/// the contact integrals (a debug assertion in the quadrature, a bare numerical failure in
+/// release). They are now rejected at their line; so is a measured spectrum whose rms slope is
+/// absurd (C in a wrong unit), naming its file.
+#[test]
+fn absurd_magnitudes_are_rejected_at_their_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("fuzz.toml");
+    for (from, to, needle) in [
+        (
+            "q1 = \"1e8 1/m\"",
+            "q1 = \"1e308\"",
+            "fuzz.toml:6: roughness.q1",
+        ),
+        (
+            "rms_slope = 1",
+            "rms_slope = \"1e308\"",
+            "fuzz.toml:7: roughness.rms_slope",
+        ),
+        (
+            "thickness = \"10 um\"",
+            "thickness = 1e-300",
+            "fuzz.toml:10: film.thickness",
+        ),
+        (
+            "pressure = \"0.1 MPa\"",
+            "pressure = 1e300",
+            "fuzz.toml:16: load.pressure",
+        ),
+    ] {
+        std::fs::write(&path, SCENE.replace(from, to)).unwrap();
+        let e = Scene::load(Some(&path), &[], library())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(needle) && e.contains("outside"), "{e}");
+    }
+    std::fs::write(
+        dir.path().join("s.csv"),
+        "q,C\n1e5,1e290\n1e6,1e280\n1e7,1e270\n",
+    )
+    .unwrap();
+    let measured = SCENE
+        .replace("model = \"self-affine\"", "psd = \"s.csv\"")
+        .replace("hurst = 0.8\n", "")
+        .replace("q0 = \"1e5 1/m\"\n", "")
+        .replace("q1 = \"1e8 1/m\"\n", "")
+        .replace("rms_slope = 1\n", "");
+    std::fs::write(&path, measured).unwrap();
+    let scene = Scene::load(Some(&path), &[], library()).unwrap();
+    let e = judge(&scene).unwrap_err().to_string();
+    assert!(
+        e.contains("fuzz.toml:3: ") && e.contains("rms slope") && e.contains("s.csv"),
+        "{e}"
+    );
+}
