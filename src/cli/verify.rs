@@ -11,11 +11,12 @@ use coatcheck::Error;
 use coatcheck::bem::{self, BemSettings, BemSolution, FieldStats, InterfaceFields, Surface};
 use coatcheck::contact::{Contact, Engine, Request, tau_exceedance, tau_peak};
 use coatcheck::layer::{Bilayer, Elastic, Stack};
-use coatcheck::prec::{Settings, Termination};
+use coatcheck::prec::{Estimate, Settings, Termination};
 use coatcheck::psd::Spectrum;
 use coatcheck::topography::io::{MapOptions, read_height_map, write_atomic};
 use coatcheck::topography::spectrum::{PsdOptions, map_psd};
 use coatcheck::units::{Dim, parse_quantity};
+use coatcheck::verify::Verification;
 use comfy_table::Table;
 use serde_json::{Value, json};
 use std::io::Write;
@@ -461,4 +462,216 @@ fn write_fields(
         }
         Ok(())
     })
+}
+
+/// The map behind `check --verify`: the scene's height file, which must be a height map.
+pub fn scene_map(scene: &coatcheck::scene::Scene) -> Result<(PathBuf, Surface), Error> {
+    use coatcheck::scene::RoughnessSource;
+    use coatcheck::topography::io::{HeightKind, sniff};
+    let origin = || {
+        scene
+            .file
+            .as_ref()
+            .map_or("--verify".to_string(), |p| p.display().to_string())
+    };
+    let RoughnessSource::Profile { path } = &scene.roughness.source else {
+        return Err(Error::Value {
+            origin: origin(),
+            msg: "--verify solves the contact on the measured surface: give the roughness as a \
+                  height map (roughness.profile or --profile), not as a spectrum or a model"
+                .into(),
+        });
+    };
+    if sniff(path)? == Some(HeightKind::Lines) {
+        return Err(Error::Input {
+            path: path.clone(),
+            line: 1,
+            msg: "--verify needs a height map (a matrix of heights), not line scans".into(),
+        });
+    }
+    let opts = MapOptions {
+        periodic: Some(true),
+        ..MapOptions::default()
+    };
+    let map = read_height_map(path, &opts)?;
+    Ok((path.clone(), Surface::from_height_map(&map)?))
+}
+
+/// Persson's value and the exact one, for the side-by-side rows of `check --verify`.
+fn check_rows(
+    ev: &coatcheck::check::Evaluation,
+    v: &Verification,
+) -> Vec<(&'static str, &'static str, Option<Estimate>, Estimate)> {
+    let c = &ev.contact;
+    let mut rows = vec![
+        (
+            "A/A0",
+            "area_fraction",
+            Some(c.area_fraction),
+            v.area_fraction,
+        ),
+        (
+            "mean contact pressure",
+            "mean_contact_pressure_pa",
+            Some(ev.mean_contact_pressure),
+            v.mean_contact_pressure,
+        ),
+        (
+            "sigma_rms top",
+            "sigma_rms_top_pa",
+            c.sigma_rms_top,
+            v.sigma_rms_top,
+        ),
+        (
+            "sigma_rms interface",
+            "sigma_rms_interface_pa",
+            c.sigma_rms_interface,
+            v.sigma_rms_interface,
+        ),
+        (
+            "tau_rms interface",
+            "tau_rms_interface_pa",
+            c.tau_rms_interface,
+            v.tau_rms_interface,
+        ),
+        ("tau_peak", "tau_peak_pa", ev.tau_peak, v.tau_peak.value),
+        (
+            "sigma_peak interface",
+            "sigma_peak_interface_pa",
+            ev.sigma_peak_interface,
+            v.sigma_peak_interface.value,
+        ),
+    ];
+    rows.push((
+        "P(|tau| > bond strength)",
+        "bond_exceedance",
+        ev.bond_exceedance.map(|p| Estimate {
+            value: p,
+            err: 0.0,
+            status: Termination::Converged,
+        }),
+        v.bond_exceedance,
+    ));
+    rows
+}
+
+/// The `check --verify` section as tables (MPa, 4 significant digits, like the check's report).
+pub fn check_table(map: &Path, ev: &coatcheck::check::Evaluation, v: &Verification) -> String {
+    use coatcheck::report::sig;
+    use comfy_table::presets::UTF8_FULL_CONDENSED;
+    let mut out = format!(
+        "exact check on the height map {} ({} x {} pixels, q_L d = {}; boundary elements, {} \
+         iterations; error = difference to the same map at half resolution)\n",
+        map.display(),
+        v.nx,
+        v.ny,
+        sig(v.q_low_d, 3),
+        v.convergence.iterations
+    );
+    let show = |key: &str, x: f64| match key.strip_suffix("_pa") {
+        Some(_) => format!("{} MPa", sig(x * 1e-6, 4)),
+        None => sig(x, 4),
+    };
+    let mut t = Table::new();
+    t.load_preset(UTF8_FULL_CONDENSED);
+    t.set_header(vec![
+        "quantity",
+        "Persson",
+        "exact (BEM)",
+        "error estimate",
+        "exact/Persson",
+    ]);
+    for (name, key, p, e) in check_rows(ev, v) {
+        let ratio = p
+            .filter(|p| p.value != 0.0)
+            .map_or("-".into(), |p| sig(e.value / p.value, 3));
+        t.add_row(vec![
+            name.to_string(),
+            p.map_or("-".into(), |p| show(key, p.value)),
+            show(key, e.value),
+            show(key, e.err),
+            ratio,
+        ]);
+    }
+    out += &format!("{t}\n");
+    let mut c = Table::new();
+    c.load_preset(UTF8_FULL_CONDENSED);
+    c.set_header(vec!["check (exact)", "value", "limit", "margin", "result"]);
+    for ch in &v.checks {
+        let mut result = if ch.pass { "PASS" } else { "FAIL" }.to_string();
+        if !ch.resolved {
+            result += " (map maximum: epsilon < 1/pixels)";
+        }
+        c.add_row(vec![
+            ch.kind.name().to_string(),
+            show("_pa", ch.value.value),
+            format!("<= {}", show("_pa", ch.limit)),
+            format!("{:+.1} %", 100.0 * ch.margin),
+            result,
+        ]);
+    }
+    out += &format!("{c}\n");
+    out += &format!(
+        "exact verdict: {}; with --verify the design passes only if both Persson's and the exact \
+         checks pass (min-thickness is judged by Persson's theory only)\n",
+        if v.pass { "PASS" } else { "FAIL" }
+    );
+    out
+}
+
+/// The `check --verify` section as a JSON value.
+pub fn check_json(map: &Path, ev: &coatcheck::check::Evaluation, v: &Verification) -> Value {
+    let mut m = serde_json::Map::new();
+    m.insert("map".into(), json!(map.display().to_string()));
+    m.insert("nx".into(), json!(v.nx));
+    m.insert("ny".into(), json!(v.ny));
+    m.insert("q_low_d".into(), json!(v.q_low_d));
+    for (_, key, p, e) in check_rows(ev, v) {
+        m.insert(key.into(), json!(e.value));
+        m.insert(format!("{key}_err"), json!(e.err));
+        m.insert(format!("persson_{key}"), json!(p.map(|p| p.value)));
+    }
+    m.insert("peaks_resolved".into(), json!(v.tau_peak.resolved));
+    m.insert(
+        "checks".into(),
+        json!(
+            v.checks
+                .iter()
+                .map(|c| json!({
+                    "name": c.kind.name(), "value": c.value.value, "value_err": c.value.err,
+                    "limit": c.limit, "margin": c.margin, "pass": c.pass, "resolved": c.resolved,
+                }))
+                .collect::<Vec<_>>()
+        ),
+    );
+    m.insert("solver".into(), json!(v.convergence));
+    m.insert("seconds".into(), json!(v.seconds));
+    m.insert(
+        "verdict".into(),
+        json!(if v.pass { "pass" } else { "fail" }),
+    );
+    Value::Object(m)
+}
+
+/// The `check --verify` section as CSV rows (`verify:<key>,value,err,unit`), no header.
+pub fn check_csv(ev: &coatcheck::check::Evaluation, v: &Verification) -> String {
+    let mut out = String::new();
+    for (_, key, _, e) in check_rows(ev, v) {
+        let (key, unit) = key.strip_suffix("_pa").map_or((key, "1"), |k| (k, "Pa"));
+        out += &format!("verify:{key},{:e},{:e},{unit}\n", e.value, e.err);
+    }
+    for c in &v.checks {
+        let name = c.kind.name();
+        out += &format!(
+            "verify:check:{name},{:e},{:e},Pa\n",
+            c.value.value, c.value.err
+        );
+        out += &format!("verify:limit:{name},{:e},,Pa\n", c.limit);
+        out += &format!("verify:pass:{name},{},,\n", u8::from(c.pass));
+    }
+    out += &format!(
+        "verify:verdict,{},,\n",
+        if v.pass { "pass" } else { "fail" }
+    );
+    out
 }

@@ -8,3 +8,4 @@ mod layer;
 mod psd_convert;
 mod psd_read;
 mod topography;
+mod verify_check;
