@@ -74,6 +74,9 @@ pub struct VerifyArgs {
     /// Solver iteration limit.
     #[arg(long, default_value_t = BemSettings::default().max_iter)]
     pub max_iter: usize,
+    /// Relative tolerance of Persson's contact integrals (default 1e-8).
+    #[arg(long)]
+    pub rtol: Option<String>,
 }
 
 fn quantity(flag: &'static str, s: &str, dim: Dim, expected: &'static str) -> Result<f64, Error> {
@@ -94,12 +97,17 @@ fn material(flag: &'static str, s: &str) -> Result<Elastic, Error> {
 struct Row {
     name: String,
     unit: &'static str,
-    persson: Option<f64>,
+    persson: Option<Estimate>,
     exact: f64,
 }
 
 impl Row {
-    fn new(name: impl Into<String>, unit: &'static str, persson: Option<f64>, exact: f64) -> Self {
+    fn new(
+        name: impl Into<String>,
+        unit: &'static str,
+        persson: Option<Estimate>,
+        exact: f64,
+    ) -> Self {
         Self {
             name: name.into(),
             unit,
@@ -109,7 +117,9 @@ impl Row {
     }
 
     fn ratio(&self) -> Option<f64> {
-        self.persson.filter(|p| *p != 0.0).map(|p| self.exact / p)
+        self.persson
+            .filter(|p| p.value != 0.0)
+            .map(|p| self.exact / p.value)
     }
 }
 
@@ -129,6 +139,7 @@ fn persson(
     map: &coatcheck::topography::HeightMap,
     stack: &Stack,
     p0: f64,
+    settings: Settings,
 ) -> Result<Contact, Error> {
     let psd = map_psd(
         map,
@@ -137,7 +148,7 @@ fn persson(
             ..PsdOptions::default()
         },
     )?;
-    let engine = Engine::new(&Spectrum::Tabulated(psd.c2d), Settings::default());
+    let engine = Engine::new(&Spectrum::Tabulated(psd.c2d), settings);
     engine.evaluate(stack, p0, Request::all())
 }
 
@@ -191,7 +202,27 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
     let sol = bem::solve(&surface, &stack, p0, &settings)?;
     let fields = bem::interface_fields(&sol, &stack)?;
     let seconds = started.elapsed().as_secs_f64();
-    let theory = persson(&map, &stack, p0)?;
+    let rtol = a
+        .rtol
+        .as_deref()
+        .map(|s| {
+            quantity(
+                "--rtol",
+                s,
+                Dim::Dimensionless,
+                "a relative tolerance such as 1e-8",
+            )
+            .and_then(|r| {
+                if r > 0.0 && r < 1.0 {
+                    Ok(r)
+                } else {
+                    Err(Error::invalid("--rtol", s, "0 < rtol < 1"))
+                }
+            })
+        })
+        .transpose()?
+        .unwrap_or(coatcheck::prec::DEFAULT_RTOL);
+    let theory = persson(&map, &stack, p0, Settings { rtol })?;
     let converged = sol.convergence.status == Termination::Converged;
     if converged && let Some(path) = &a.fields {
         write_fields(path, &surface, &sol, &fields)?;
@@ -221,6 +252,7 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
                 "area_fraction": sol.area_fraction.value,
                 "area_fraction_err": sol.area_fraction.err,
                 "persson_area_fraction": theory.area_fraction.value,
+                "persson_area_fraction_err": theory.area_fraction.err,
                 "sigma_rms_top_pa": sol.sigma_rms_top,
                 "contact_pressure": stats_json(&sol.contact_pressure),
                 "interface_normal": stats_json(&fields.normal_stats),
@@ -228,7 +260,9 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
                 "bond_strength_pa": bond,
                 "shear_fraction_above_bond": above,
                 "comparison": rows.iter().map(|r| json!({
-                    "quantity": r.name, "unit": r.unit, "persson": r.persson,
+                    "quantity": r.name, "unit": r.unit,
+                    "persson": r.persson.map(|p| p.value),
+                    "persson_err": r.persson.map(|p| p.err),
                     "exact": r.exact, "ratio": r.ratio(),
                 })).collect::<Vec<_>>(),
             });
@@ -261,32 +295,27 @@ fn rows(
     bond: Option<f64>,
     above: Option<f64>,
 ) -> Vec<Row> {
-    let v = |e: Option<coatcheck::prec::Estimate>| e.map(|e| e.value);
-    let tau_rms = v(theory.tau_rms_interface);
+    let tau_rms = theory.tau_rms_interface;
+    let area = theory.area_fraction;
     let mut rows = vec![
-        Row::new(
-            "A/A0",
-            "",
-            Some(theory.area_fraction.value),
-            sol.area_fraction.value,
-        ),
+        Row::new("A/A0", "", Some(area), sol.area_fraction.value),
         Row::new(
             "sigma_rms top",
             "Pa",
-            v(theory.sigma_rms_top),
+            theory.sigma_rms_top,
             sol.sigma_rms_top,
         ),
         Row::new(
             "sigma_rms interface",
             "Pa",
-            v(theory.sigma_rms_interface),
+            theory.sigma_rms_interface,
             fields.normal_stats.rms_dev,
         ),
         Row::new("tau_rms interface", "Pa", tau_rms, fields.shear_stats.rms),
         Row::new(
             "contact pressure mean",
             "Pa",
-            Some(sol.p0 / theory.area_fraction.value),
+            Some(area.map(|a| sol.p0 / a, |a| sol.p0 / (a * a))),
             sol.contact_pressure.mean,
         ),
     ];
@@ -320,7 +349,8 @@ fn rows(
     ));
     for q in &fields.shear_stats.quantiles {
         // Persson: |τ| half-normal with rms τ_rms, so the quantile at P is τ_peak(ε = 1 − P).
-        let p = tau_rms.map(|t| tau_peak(t, 1.0 - q.prob));
+        let k = tau_peak(1.0, 1.0 - q.prob);
+        let p = tau_rms.map(|t| t.map(|t| k * t, |_| k));
         rows.push(Row::new(
             format!("interface |tau| q{}", q.prob),
             "Pa",
@@ -338,7 +368,11 @@ fn rows(
         rows.push(Row::new(
             "area fraction |tau| > bond",
             "",
-            tau_rms.map(|t| tau_exceedance(t, b)),
+            tau_rms.map(|t| Estimate {
+                value: tau_exceedance(t.value, b),
+                err: (tau_exceedance(t.value + t.err, b) - tau_exceedance(t.value, b)).abs(),
+                status: t.status,
+            }),
             f,
         ));
     }
@@ -409,6 +443,7 @@ fn print_table(
         "quantity",
         "unit",
         "Persson",
+        "Persson err",
         "exact (BEM)",
         "exact/Persson",
     ]);
@@ -417,7 +452,8 @@ fn print_table(
         t.add_row(vec![
             r.name.clone(),
             r.unit.to_string(),
-            num(r.persson),
+            num(r.persson.map(|p| p.value)),
+            r.persson.map_or("-".into(), |p| format!("{:.1e}", p.err)),
             format!("{:.4e}", r.exact),
             r.ratio().map_or("-".into(), |v| format!("{v:.3}")),
         ]);

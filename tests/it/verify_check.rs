@@ -249,3 +249,45 @@ fn bundled_height_map_scene() {
     assert_eq!(v["peaks_resolved"], true);
     assert_eq!(j["verdict_with_verify"], "pass");
 }
+
+/// `verify --rtol` sets the tolerance of Persson's integrals; their error estimates are in the
+/// JSON and within the requested tolerance; a tolerance outside (0, 1) is bad input.
+#[test]
+fn verify_rtol_and_persson_errors() {
+    let base = [
+        "verify",
+        "examples/data/height-map.csv",
+        "--film",
+        "2MPa,0.5",
+        "--substrate",
+        "200GPa,0.3",
+        "--thickness",
+        "3um",
+        "--pressure",
+        "0.1MPa",
+        "--format",
+        "json",
+        "--rtol",
+    ];
+    for rtol in [1e-4, 1e-10] {
+        let mut args = base.to_vec();
+        let r = format!("{rtol}");
+        args.push(&r);
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(0));
+        let j = json(&o);
+        let (a, e) = (
+            j["persson_area_fraction"].as_f64().unwrap(),
+            j["persson_area_fraction_err"].as_f64().unwrap(),
+        );
+        assert!(e > 0.0 && e <= rtol * a, "rtol {rtol}: {a} ± {e}");
+        for row in j["comparison"].as_array().unwrap() {
+            assert_eq!(row["persson"].is_null(), row["persson_err"].is_null());
+        }
+    }
+    let mut args = base.to_vec();
+    args.push("0");
+    let o = run(&args);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--rtol"));
+}
