@@ -244,9 +244,22 @@ pub struct Outcome {
     pub warnings: Vec<String>,
 }
 
+/// The largest enabled check's value/limit at one thickness (> 1 fails), the relative error
+/// of that value, and which check it is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Utilisation {
+    pub value: f64,
+    pub rel_err: f64,
+    pub kind: Option<CheckKind>,
+}
+
 /// One spectrum and one design, with the engine's d-independent precomputation.
 pub struct Checker {
     engine: Engine,
+    /// The engine of the d_min search, at [`crate::prec::SEARCH_RTOL`] (or the scene's rtol if
+    /// looser): d_min is wanted to [`D_MIN_RTOL`], and the utilisation's error enters its
+    /// estimate.
+    search: Engine,
     design: Design,
     q_low: f64,
     q_high: f64,
@@ -291,6 +304,12 @@ impl Checker {
         let (q_low, q_high) = spectrum.support();
         Ok(Self {
             engine: Engine::new(spectrum, settings),
+            search: Engine::new(
+                spectrum,
+                Settings {
+                    rtol: settings.rtol.max(crate::prec::SEARCH_RTOL),
+                },
+            ),
             design,
             q_low,
             q_high,
@@ -403,17 +422,25 @@ impl Checker {
 
     /// Utilisation (value/limit, > 1 fails) of the enabled stress checks at `thickness`, with the
     /// check that has the largest; only what those checks need is computed.
-    fn utilisation(&self, thickness: f64) -> Result<(f64, Option<CheckKind>), Error> {
+    fn utilisation(&self, thickness: f64) -> Result<Utilisation, Error> {
         let req = self.design.criteria.checks.request();
         let contact = self
-            .engine
+            .search
             .evaluate(&self.stack(thickness)?, self.design.pressure, req)?;
         let ev = self.assess(contact, false)?;
-        let mut worst = (0.0, None);
+        let mut worst = Utilisation {
+            value: 0.0,
+            rel_err: 0.0,
+            kind: None,
+        };
         for c in &ev.checks {
             let u = c.value.value / c.limit.unwrap_or(f64::INFINITY);
-            if u > worst.0 || worst.1.is_none() {
-                worst = (u, Some(c.kind));
+            if u > worst.value || worst.kind.is_none() {
+                worst = Utilisation {
+                    value: u,
+                    rel_err: c.value.err / c.value.value.abs(),
+                    kind: Some(c.kind),
+                };
             }
         }
         Ok(worst)
@@ -559,12 +586,16 @@ impl Checker {
 pub fn search_min_thickness(
     lo: f64,
     hi: f64,
-    mut util: impl FnMut(f64) -> Result<(f64, Option<CheckKind>), Error>,
+    mut util: impl FnMut(f64) -> Result<Utilisation, Error>,
 ) -> Result<MinThickness, Error> {
     let mut evaluations = 0usize;
+    // The largest relative error of any utilisation used.
+    let mut u_rel_err = 0.0f64;
     let mut util = |x: f64| {
         evaluations += 1;
-        util(x.exp())
+        let u = util(x.exp())?;
+        u_rel_err = u_rel_err.max(u.rel_err);
+        Ok((u.value, u.kind))
     };
     let result = |thickness, governing, all_pass_to_floor, evaluations| MinThickness {
         thickness,
@@ -655,7 +686,11 @@ pub fn search_min_thickness(
     }
     let (d_fail, d_pass) = (x_fail.exp(), x_pass.exp());
     let mid = (0.5 * (x_fail + x_pass)).exp();
-    let d_min = Estimate::new(mid, 0.5 * (d_pass - d_fail), Termination::Converged);
+    // The utilisations' own errors shift the crossing by δ(ln u)/|d ln u/d ln d| in ln d; the
+    // slope is the secant over the final bracket.
+    let slope = (y_fail - y_pass) / (x_pass - x_fail);
+    let shift = mid * u_rel_err / slope.abs();
+    let d_min = Estimate::new(mid, 0.5 * (d_pass - d_fail) + shift, Termination::Converged);
     Ok(result(Some(d_min), governing, false, evaluations))
 }
 
@@ -753,7 +788,14 @@ mod tests {
 
     /// Synthetic utilisations u(ln d) with known crossings.
     fn search(u: impl Fn(f64) -> f64) -> MinThickness {
-        search_min_thickness(1e-9, 1e-2, |d| Ok((u(d.ln()), Some(CheckKind::BondShear)))).unwrap()
+        search_min_thickness(1e-9, 1e-2, |d| {
+            Ok(Utilisation {
+                value: u(d.ln()),
+                rel_err: 0.0,
+                kind: Some(CheckKind::BondShear),
+            })
+        })
+        .unwrap()
     }
 
     fn assert_crossing(m: &MinThickness, want: f64) {
@@ -771,6 +813,35 @@ mod tests {
         // 29 scan samples (3.4 decades at 8 per decade, plus the bulk bound), then ITP: a
         // smooth power law needs about 3 refinement steps where bisection needs 8.
         assert!(m.evaluations <= 33, "{}", m.evaluations);
+    }
+
+    /// The utilisations' own error enters d_min's estimate: perturbing u by its stated relative
+    /// error moves d_min by no more than the estimate.
+    #[test]
+    fn utilisation_error_widens_the_estimate() {
+        let run = |scale: f64, rel_err: f64| {
+            search_min_thickness(1e-9, 1e-2, |d| {
+                Ok(Utilisation {
+                    value: scale * (3.7e-6f64.ln() - d.ln()).exp().powf(0.05),
+                    rel_err,
+                    kind: Some(CheckKind::BondShear),
+                })
+            })
+            .unwrap()
+            .thickness
+            .unwrap()
+        };
+        let exact = run(1.0, 0.0);
+        let stated = run(1.0, 1e-3);
+        // A shallow crossing (d ln u/d ln d = -0.05): 1e-3 in u is 2 % in d, beyond the bracket.
+        assert!(stated.err >= 0.02 * stated.value, "{stated:?}");
+        for scale in [1.0 - 1e-3, 1.0 + 1e-3] {
+            let moved = run(scale, 0.0);
+            assert!(
+                (moved.value - exact.value).abs() <= stated.err,
+                "{moved:?} {stated:?}"
+            );
+        }
     }
 
     #[test]
