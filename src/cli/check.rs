@@ -67,6 +67,22 @@ pub struct CheckArgs {
     /// Use measured data only below this wavenumber.
     #[arg(long, allow_hyphen_values = true)]
     pub q_max: Option<String>,
+    /// PSD file: column of q (1-based number or header name; default: detected from the header).
+    #[arg(long)]
+    pub q_col: Option<String>,
+    /// PSD file: column of C.
+    #[arg(long)]
+    pub c_col: Option<String>,
+    /// PSD file: unit of q (e.g. 1/um), overriding the header's.
+    #[arg(long)]
+    pub q_unit: Option<String>,
+    /// PSD file: unit of C (e.g. um^4 for a 2D PSD, nm^3 for a 1D PSD), overriding the header's.
+    #[arg(long)]
+    pub c_unit: Option<String>,
+    /// PSD file: 2d (C in m^4) or 1d (C1D in m^3 from line scans, converted exactly by the
+    /// inverse Abel transform); default from the unit of C, else 2d.
+    #[arg(long)]
+    pub psd_kind: Option<String>,
     /// Film material (name from `coatcheck materials`).
     #[arg(long)]
     pub film: Option<String>,
@@ -134,7 +150,7 @@ pub struct CheckArgs {
 
 impl CheckArgs {
     fn overrides(&self) -> Vec<(&'static str, String)> {
-        let all: [(&'static str, &Option<String>); 27] = [
+        let all: [(&'static str, &Option<String>); 32] = [
             ("roughness.psd", &self.psd),
             ("roughness.profile", &self.profile),
             ("roughness.model", &self.model),
@@ -147,6 +163,11 @@ impl CheckArgs {
             ("roughness.rms_height", &self.rms_height),
             ("roughness.q_min", &self.q_min),
             ("roughness.q_max", &self.q_max),
+            ("roughness.q_col", &self.q_col),
+            ("roughness.c_col", &self.c_col),
+            ("roughness.q_unit", &self.q_unit),
+            ("roughness.c_unit", &self.c_unit),
+            ("roughness.psd_kind", &self.psd_kind),
             ("film.material", &self.film),
             ("film.youngs_modulus", &self.film_youngs_modulus),
             ("film.poisson_ratio", &self.film_poisson_ratio),

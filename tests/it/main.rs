@@ -2,6 +2,7 @@
 mod bem;
 mod check;
 mod cli_check;
+mod cli_psd_format;
 mod cli_response;
 mod contact;
 mod layer;
