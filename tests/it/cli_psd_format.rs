@@ -2,17 +2,7 @@
 //! q_unit, c_unit, psd_kind): the same spectrum written in other units, column orders and as a
 //! 1D PSD gives the same contact numbers as the SI file; bad values are exit 2 naming the key.
 
-use std::process::{Command, Output};
-
-const BIN: &str = env!("CARGO_BIN_EXE_coatcheck");
-
-fn run(args: &[&str]) -> Output {
-    Command::new(BIN)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .expect("run coatcheck")
-}
+use crate::common::{json, run};
 
 /// A self-affine PSD (H = 0.8) at 9 points per decade, in SI.
 fn points() -> Vec<(f64, f64)> {
@@ -45,7 +35,7 @@ fn check(psd: &std::path::Path, extra: &[&str]) -> serde_json::Value {
         "{}",
         String::from_utf8_lossy(&o.stderr)
     );
-    serde_json::from_slice(&o.stdout).unwrap()
+    json(&o)
 }
 
 #[test]

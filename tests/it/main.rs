@@ -4,6 +4,7 @@ mod check;
 mod cli_check;
 mod cli_psd_format;
 mod cli_response;
+mod common;
 mod contact;
 mod layer;
 mod psd_convert;

@@ -3,27 +3,29 @@
 //! p0 + p*·cos(qx) with p* = a·q·E0*/(2 S(qd)), so that at z = d the normal stress is
 //! p0 + f·p*·cos(qx) and |τ| = |g|·p*·|sin(qx)| (paper eqs. 7, B7; `bem` module docs).
 
+use crate::common::{json, run};
 use coatcheck::bem::{BemSettings, Surface};
 use coatcheck::check::{CheckKind, Checks, Criteria, Design};
 use coatcheck::layer::{Bilayer, Elastic};
 use coatcheck::verify::verify;
 use std::f64::consts::PI;
 use std::path::PathBuf;
-use std::process::{Command, Output};
 
-const BIN: &str = env!("CARGO_BIN_EXE_coatcheck");
-
-fn run(args: &[&str]) -> Output {
-    Command::new(BIN)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .expect("run coatcheck")
-}
-
-fn json(o: &Output) -> serde_json::Value {
-    serde_json::from_slice(&o.stdout).expect("JSON on stdout")
-}
+/// `coatcheck verify` on the bundled map with the scene of [`FLAGS`] at d = 3 µm, JSON output.
+const VERIFY: [&str; 12] = [
+    "verify",
+    "examples/data/height-map.csv",
+    "--film",
+    "2MPa,0.5",
+    "--substrate",
+    "200GPa,0.3",
+    "--thickness",
+    "3um",
+    "--pressure",
+    "0.1MPa",
+    "--format",
+    "json",
+];
 
 /// A sinusoid along x (64 pixels per period, 64 rows), amplitude `a`, period `l`.
 fn sinusoid(a: f64, l: f64) -> Surface {
@@ -140,20 +142,7 @@ fn check_verify_matches_the_verify_command() {
         String::from_utf8_lossy(&o.stderr)
     );
     let c = json(&o);
-    let o = run(&[
-        "verify",
-        "examples/data/height-map.csv",
-        "--film",
-        "2MPa,0.5",
-        "--substrate",
-        "200GPa,0.3",
-        "--thickness",
-        "3um",
-        "--pressure",
-        "0.1MPa",
-        "--format",
-        "json",
-    ]);
+    let o = run(&VERIFY);
     assert_eq!(o.status.code(), Some(0));
     let v = json(&o);
     let cv = &c["verify"];
@@ -254,23 +243,10 @@ fn bundled_height_map_scene() {
 /// JSON and within the requested tolerance; a tolerance outside (0, 1) is bad input.
 #[test]
 fn verify_rtol_and_persson_errors() {
-    let base = [
-        "verify",
-        "examples/data/height-map.csv",
-        "--film",
-        "2MPa,0.5",
-        "--substrate",
-        "200GPa,0.3",
-        "--thickness",
-        "3um",
-        "--pressure",
-        "0.1MPa",
-        "--format",
-        "json",
-        "--rtol",
-    ];
+    let mut base = VERIFY.to_vec();
+    base.push("--rtol");
     for rtol in [1e-4, 1e-10] {
-        let mut args = base.to_vec();
+        let mut args = base.clone();
         let r = format!("{rtol}");
         args.push(&r);
         let o = run(&args);
@@ -285,7 +261,7 @@ fn verify_rtol_and_persson_errors() {
             assert_eq!(row["persson"].is_null(), row["persson_err"].is_null());
         }
     }
-    let mut args = base.to_vec();
+    let mut args = base.clone();
     args.push("0");
     let o = run(&args);
     assert_eq!(o.status.code(), Some(2));
