@@ -1,6 +1,7 @@
 //! Integration tests: one binary, one module per area.
 mod cli_response;
 mod contact;
+mod extreme;
 mod layer;
 mod psd_convert;
 mod psd_read;
