@@ -13,6 +13,7 @@
 
 pub mod contact;
 pub mod error;
+pub mod figures;
 pub mod layer;
 pub mod prec;
 pub mod psd;

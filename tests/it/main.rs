@@ -2,6 +2,7 @@
 mod cli_response;
 mod contact;
 mod extreme;
+mod figures;
 mod layer;
 mod psd_convert;
 mod psd_read;

@@ -1,0 +1,210 @@
+//! The paper's figures at reduced resolution (`coatcheck::figures`), checked against the
+//! statements the paper (and notes.md) makes about each: limits and trends in the text.
+
+use coatcheck::figures::{self, Figure, Series};
+use statrs::function::erf::erf;
+
+fn series<'a>(f: &'a Figure, label_start: &str) -> &'a Series {
+    f.series
+        .iter()
+        .find(|s| s.label.starts_with(label_start))
+        .unwrap_or_else(|| panic!("{}: no series {label_start}", f.name))
+}
+
+fn points(s: &Series) -> impl Iterator<Item = (f64, f64)> + '_ {
+    s.x.iter().copied().zip(s.y.iter().copied())
+}
+
+fn assert_finite(f: &Figure) {
+    for s in &f.series {
+        assert!(s.x.len() == s.y.len() && s.y.len() == s.err.len() && !s.y.is_empty());
+        for (&y, &e) in s.y.iter().zip(&s.err) {
+            assert!(
+                y.is_finite() && e.is_finite() && e <= 1e-6 * y.abs().max(1e-300),
+                "{} {}: {y} ± {e}",
+                f.name,
+                s.label
+            );
+        }
+    }
+}
+
+/// Homogeneous solid, ξ = 1: A/A0 = erf(√2 p0/E*) (notes.md).
+fn homogeneous_area(e: f64) -> f64 {
+    erf(2f64.sqrt() * figures::P0 / (e / 0.75))
+}
+
+/// Fig. 4: rubber limit for q0 d ≳ 2 (fractal) and ≳ 5 (Gaussian); the steel limit is reached
+/// only for extremely small q0 d (not at q0 d = 5e-4, the left end of the plot).
+#[test]
+fn fig04_limits() {
+    let f = figures::fig04(13).unwrap();
+    assert_finite(&f);
+    let rubber = homogeneous_area(figures::E_RUBBER);
+    let steel = homogeneous_area(figures::E_STEEL);
+    for (label, from) in [("fractal", 2.0), ("Gaussian", 5.0)] {
+        for (q0, a) in points(series(&f, label)) {
+            let qd = q0 * figures::D_FIG4;
+            eprintln!(
+                "fig04 {label} q0d {qd:.3e} A {a:.6e} A/A_rubber {:.4}",
+                a / rubber
+            );
+            if qd >= from {
+                assert!((a / rubber - 1.0).abs() < 0.02, "{label} q0 d {qd}: {a}");
+            }
+        }
+    }
+    for (_, a) in points(series(&f, "rubber")) {
+        assert!((a / rubber - 1.0).abs() < 1e-12);
+    }
+    for (_, a) in points(series(&f, "steel")) {
+        assert!((a / steel - 1.0).abs() < 1e-12);
+    }
+    let fractal = series(&f, "fractal");
+    assert!(
+        fractal.y[0] > 2.0 * steel,
+        "steel limit reached at q0 d = 5e-4"
+    );
+    // Increasing in q0 up to the estimates (flat at the rubber limit).
+    assert!(
+        fractal
+            .y
+            .windows(2)
+            .zip(fractal.err.windows(2))
+            .all(|(w, e)| w[1] >= w[0] - e[0] - e[1])
+    );
+}
+
+/// Fig. 5: ν = 0.49985 agrees with ν = 0.5 within 1 % for q0 d ≥ 0.3; for q0 d ≈ 0.01–0.03 the
+/// slightly compressible film gives a clearly larger area (notes.md: 50–70 %).
+#[test]
+fn fig05_compressibility() {
+    let f = figures::fig05(25).unwrap();
+    assert_finite(&f);
+    let (a, b) = (series(&f, "nu = 0.5"), series(&f, "nu = 0.49985"));
+    for ((qd, inc), comp) in points(a).zip(&b.y) {
+        let r = comp / inc;
+        eprintln!("fig05 q0d {qd:.3e} ratio {r:.4}");
+        if qd >= 0.3 {
+            assert!((r - 1.0).abs() < 0.01, "q0 d {qd}: ratio {r}");
+        }
+        if (0.01..=0.03).contains(&qd) {
+            assert!(r > 1.4, "q0 d {qd}: ratio {r}");
+        }
+    }
+}
+
+/// Fig. 7: interface stresses vanish for q0 d ≫ 1; for q0 d ≲ 1/2 the interface normal stress is
+/// close to the top one; top σ_rms constant for q0 d ≳ 2; at d = 10 µm the notes' values.
+#[test]
+fn fig07_trends() {
+    let f = figures::fig07(13).unwrap();
+    assert_finite(&f);
+    let top = series(&f, "sigma top");
+    let sn = series(&f, "sigma interface");
+    let tau = series(&f, "tau interface");
+    let top_thick = *top.y.last().unwrap();
+    for (i, &d) in top.x.iter().enumerate() {
+        let qd = 1e5 * d;
+        let (t, s, u) = (top.y[i], sn.y[i], tau.y[i]);
+        eprintln!("fig07 q0d {qd:.3e} top {t:.4e} if {s:.4e} tau {u:.4e}");
+        if qd >= 50.0 {
+            assert!(s < 1e-15 * t && u < 1e-15 * t, "q0 d {qd}");
+        }
+        if qd <= 0.5 {
+            assert!(s > 0.75 * t, "q0 d {qd}: {s} against top {t}");
+        }
+        if qd >= 2.0 {
+            assert!((t / top_thick - 1.0).abs() < 0.05, "q0 d {qd}: top {t}");
+        }
+    }
+    let at_10um = top
+        .x
+        .iter()
+        .position(|&d| (d / 1e-5 - 1.0).abs() < 1e-9)
+        .unwrap();
+    for (s, want) in [(top, 0.357e6), (sn, 0.222e6), (tau, 0.133e6)] {
+        assert!((s.y[at_10um] / want - 1.0).abs() < 2e-3, "{}", s.label);
+    }
+}
+
+/// Fig. 9: A/A0 linear in p0 at low load.
+#[test]
+fn fig09_linear_at_low_load() {
+    let f = figures::fig09(11).unwrap();
+    assert_finite(&f);
+    for s in &f.series {
+        let slope0 = s.y[0] / s.x[0];
+        for (p, a) in points(s) {
+            eprintln!(
+                "fig09 {} p0 {p:.3e} A {a:.4e} A/p0 ratio {:.5}",
+                s.label,
+                a / p / slope0
+            );
+            if p <= 1e5 {
+                assert!((a / p / slope0 - 1.0).abs() < 0.01, "{} p0 {p}", s.label);
+            }
+        }
+        assert!(s.y.windows(2).all(|w| w[1] >= w[0]));
+    }
+}
+
+/// Fig. 10: E_eff/E_R runs from E_S/E_R (q0 d → 0) down to 1 (q0 d → ∞).
+#[test]
+fn fig10_limits() {
+    let f = figures::fig10(13).unwrap();
+    assert_finite(&f);
+    let s = &f.series[0];
+    for (qd, e) in points(s) {
+        eprintln!("fig10 q0d {qd:.3e} E_eff/E_R {e:.5e}");
+    }
+    assert!(s.y.windows(2).all(|w| w[1] <= w[0]));
+    let ratio = figures::E_STEEL / figures::E_RUBBER;
+    assert!(s.y[0] > 0.5 * ratio && s.y[0] <= ratio * (1.0 + 1e-9));
+    assert!((s.y.last().unwrap() - 1.0).abs() < 1e-2);
+}
+
+/// Fig. 12: for decreasing thickness the Gaussian E_eff rises faster than the Gent disc's
+/// 1 + (R/d)²/8 before saturating at E_S/E_R.
+#[test]
+fn fig12_gaussian_stiffens_faster_than_gent() {
+    let f = figures::fig12(21).unwrap();
+    assert_finite(&f);
+    let g = series(&f, "Gaussian");
+    let disc = series(&f, "Gent");
+    let slope = |s: &Series, i: usize| (s.y[i + 1] / s.y[i]).ln() / (s.x[i + 1] / s.x[i]).ln();
+    for i in 0..g.x.len() - 1 {
+        eprintln!(
+            "fig12 x {:.3e} gauss {:.4e} slope {:.3} gent {:.4e} slope {:.3}",
+            g.x[i],
+            g.y[i],
+            slope(g, i),
+            disc.y[i],
+            slope(disc, i)
+        );
+    }
+    // Where both rise steeply (0.03 ≤ x ≤ 0.3), the Gaussian log-slope is steeper.
+    let mut compared = 0;
+    for i in 0..g.x.len() - 1 {
+        if g.x[i] >= 0.03 && g.x[i + 1] <= 0.3 {
+            assert!(slope(g, i) < slope(disc, i) - 0.3, "x {}", g.x[i]);
+            compared += 1;
+        }
+    }
+    assert!(compared >= 3);
+    assert!(g.y[0] <= figures::E_STEEL / figures::E_RUBBER * (1.0 + 1e-9));
+}
+
+/// Fig. 14: f and g nonzero only for small q (q d ≲ a few); notes.md values at q d = 1 and 10.
+#[test]
+fn fig14_only_small_q() {
+    let f = figures::fig14(31).unwrap();
+    assert_finite(&f);
+    let (fs, gs) = (series(&f, "f"), series(&f, "g"));
+    assert!((fs.y[0] - 0.80396367594).abs() < 1e-10 && (gs.y[0] - 0.45638307583).abs() < 1e-10);
+    for (i, &q) in fs.x.iter().enumerate() {
+        if q * 10e-6 >= 10.0 {
+            assert!(fs.y[i] < 1e-3 && gs.y[i].abs() < 1e-3, "q {q}");
+        }
+    }
+}
