@@ -27,8 +27,9 @@ use crate::layer::Stack;
 use crate::prec::{EPS, Estimate, Settings, Termination};
 use crate::psd::Spectrum;
 use crate::quad::{self, ExpGauss2};
+use libm::{erf, erfc};
 use serde::Serialize;
-use statrs::function::erf::{erf, erfc, erfc_inv};
+use statrs::function::erf::erfc_inv;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
@@ -93,6 +94,10 @@ struct Grid {
     w: Vec<f64>,
     /// ρ_j = W(u_j)/W_ref(u_j).
     rho: Vec<f64>,
+    /// W(u_j) = q_j⁴ C(q_j), for dG/du at the nodes.
+    w_at: Vec<f64>,
+    /// Per panel: d ln W_ref / du.
+    beta: Vec<f64>,
     /// Per panel: error constant ∫ W_ref (u−u1)²(u−u2)² du / 24.
     err4: Vec<f64>,
     /// Per panel: partial-integral coefficients for G at its two nodes (from the panel's left end).
@@ -140,6 +145,8 @@ impl Grid {
             u: vec![],
             w: vec![],
             rho: vec![],
+            w_at: vec![],
+            beta: vec![],
             err4: vec![],
             partial: vec![],
             partial_curv: vec![],
@@ -191,7 +198,9 @@ impl Grid {
                     g.q.push(q);
                     g.u.push(u);
                     g.w.push(rule.w[k] * scale);
-                    g.rho.push((ln_w(u) - w_ref).exp());
+                    let lw_u = ln_w(u);
+                    g.rho.push((lw_u - w_ref).exp());
+                    g.w_at.push(lw_u.exp());
                 }
                 // partial[j][k]: G from the panel's left end to ascending node j, per ascending node k.
                 let mut partial = [[0.0; 2]; 2];
@@ -205,6 +214,7 @@ impl Grid {
                         };
                     }
                 }
+                g.beta.push((lwb - lwa) / width);
                 g.partial.push(partial);
                 // ∫ from the left end = −∫ from the right end when flipped (the full-panel integral
                 // of (s − s1)(s − s2) vanishes by orthogonality); (u − u1)(u − u2) = Δ²(s − s1)(s − s2).
@@ -264,6 +274,70 @@ impl Grid {
 
     fn integrate(&self, psi: &[f64]) -> (f64, f64) {
         self.integrate_from(psi, 0)
+    }
+
+    /// Error estimate of Σ w ρ K k2 P from panel `from` on, where P = P(G(u)) has kinks in its
+    /// second derivative at the spectrum's knots (G'' jumps there) and so cannot be differenced
+    /// across panels. The smooth factor A = ρ K k2 is differenced (fourth-order Newton divided
+    /// differences over five nodes); P's u-derivatives come from the chain rule with the
+    /// analytic G-derivatives of erf(a/√G) and G' = cg W K ρ at the node; Leibniz's rule gives
+    /// (AP)⁗ and the Gauss error term err4·|(AP)⁗|, with the safety factor.
+    #[allow(clippy::too_many_arguments)]
+    fn product_errors(
+        &self,
+        kern: &[f64],
+        k2: &[f64],
+        p: &[f64],
+        g: &[f64],
+        p0: f64,
+        cg: f64,
+        from: usize,
+    ) -> f64 {
+        let n = self.q.len();
+        let lo = 2 * from;
+        if n - lo < 5 {
+            return 0.0;
+        }
+        let a_of = |j: usize| self.rho[j] * kern[j] * k2[j];
+        let mut total = 0.0;
+        for panel in from..self.panels() {
+            let start = (2 * panel).saturating_sub(2).max(lo).min(n - 5);
+            let u = &self.u[start..start + 5];
+            // Newton divided differences of A: dd[k] ≈ A^(k)/k!.
+            let mut d = [
+                a_of(start),
+                a_of(start + 1),
+                a_of(start + 2),
+                a_of(start + 3),
+                a_of(start + 4),
+            ];
+            let mut dd = [d[0], 0.0, 0.0, 0.0, 0.0];
+            for level in 1..5 {
+                for i in 0..5 - level {
+                    d[i] = (d[i + 1] - d[i]) / (u[i + level] - u[i]);
+                }
+                dd[level] = d[0];
+            }
+            let a_der = [
+                a_of(2 * panel),
+                dd[1],
+                2.0 * dd[2],
+                6.0 * dd[3],
+                24.0 * dd[4],
+            ];
+            // P and its u-derivatives at the panel's first node.
+            let j = 2 * panel;
+            let gp = cg * self.w_at[j] * kern[j] * self.rho[j];
+            // G' ∝ e^{λu} locally: λ = d ln W/du + d ln(Kρ)/du across the panel's two nodes.
+            let lam = self.beta[panel]
+                + ((kern[j + 1] * self.rho[j + 1]) / (kern[j] * self.rho[j])).ln()
+                    / (self.u[j + 1] - self.u[j]);
+            let p_der = probability_derivatives(p0, g[j], gp, lam, p[j]);
+            let binom = [1.0, 4.0, 6.0, 4.0, 1.0];
+            let d4: f64 = (0..5).map(|k| binom[k] * a_der[4 - k] * p_der[k]).sum();
+            total += ERR_SAFETY * self.err4[panel] * d4.abs();
+        }
+        total
     }
 }
 
@@ -610,6 +684,37 @@ fn contact_probability_slope(p0: f64, g: f64) -> f64 {
     }
 }
 
+/// P(G(u)) and its first four u-derivatives, for G' = `gp` at G = `g` growing locally like
+/// e^{λu} (G'' = λG', G''' = λ²G', G'''' = λ³G'), by Faà di Bruno's formula with
+/// P_k = d^k P/dG^k = −(a/√π) e^{−w} G^{−(2k+1)/2} Q_k(w), a = p0/2, w = a²/G,
+/// Q1 = 1, Q2 = w − 3/2, Q3 = w² − 5w + 15/4, Q4 = w³ − 21w²/2 + 105w/4 − 105/8.
+fn probability_derivatives(p0: f64, g: f64, gp: f64, lam: f64, p: f64) -> [f64; 5] {
+    if g <= 0.0 {
+        return [p, 0.0, 0.0, 0.0, 0.0];
+    }
+    let a = 0.5 * p0;
+    let w = a * a / g;
+    let base = -(a / PI.sqrt()) * (-w).exp() / g.sqrt();
+    let q = [
+        1.0,
+        w - 1.5,
+        w * w - 5.0 * w + 3.75,
+        w * w * w - 10.5 * w * w + 26.25 * w - 13.125,
+    ];
+    let pk: [f64; 4] = std::array::from_fn(|k| base * g.powi(-(k as i32 + 1)) * q[k]);
+    let (g1, g2, g3, g4) = (gp, gp * lam, gp * lam * lam, gp * lam * lam * lam);
+    [
+        p,
+        pk[0] * g1,
+        pk[1] * g1 * g1 + pk[0] * g2,
+        pk[2] * g1.powi(3) + 3.0 * pk[1] * g1 * g2 + pk[0] * g3,
+        pk[3] * g1.powi(4)
+            + 6.0 * pk[2] * g1 * g1 * g2
+            + pk[1] * (4.0 * g1 * g3 + 3.0 * g2 * g2)
+            + pk[0] * g4,
+    ]
+}
+
 /// σ_top² / 2 = ∫_0^{G1} erf(a/√G) dG with a = p0/2, in closed form.
 fn top_variance_half(p0: f64, g1: f64) -> f64 {
     if g1 <= 0.0 {
@@ -701,6 +806,7 @@ fn evaluate_on(
         let from = graded.base_from;
         let g_errs = grid.panel_errors(&f, 0);
         let mut p_node = vec![0.0; n];
+        let mut g_node = vec![0.0; n];
         // |dP/dG| times the cumulative G error, and dP/dG times the signed partial-integral error.
         let mut dp_cum = vec![0.0; n];
         let mut dp_part = vec![0.0; n];
@@ -718,6 +824,7 @@ fn evaluate_on(
                 let gv =
                     cg * (g_left + grid.partial[p][jj][0] * f[j0] + grid.partial[p][jj][1] * f[j1]);
                 p_node[j] = contact_probability(p0, gv);
+                g_node[j] = gv;
                 let slope = contact_probability_slope(p0, gv) * cg;
                 dp_cum[j] = slope * g_left_err;
                 dp_part[j] = slope * psi2 * grid.partial_curv[p][jj];
@@ -727,7 +834,8 @@ fn evaluate_on(
         }
         let base = |k2: &[f64], acc: (f64, f64)| {
             let psi: Vec<f64> = (0..n).map(|j| kern[j] * p_node[j] * k2[j]).collect();
-            let (v, e) = grid.integrate_from(&psi, from);
+            let (v, _) = grid.integrate_from(&psi, from);
+            let e = grid.product_errors(&kern, k2, &p_node, &g_node, p0, cg, from);
             let wt = |j: usize| grid.w[j] * grid.rho[j] * kern[j] * k2[j];
             let dp: f64 = (from..grid.panels())
                 .map(|p| {

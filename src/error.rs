@@ -20,6 +20,10 @@ pub enum Error {
         line: usize,
         msg: String,
     },
+    /// A bad or missing value that has no file line: a command-line flag (`origin` is the
+    /// flag) or a key missing from a scene (`origin` is the scene file).
+    #[error("{origin}: {msg}")]
+    Value { origin: String, msg: String },
     /// A file that could not be read or written.
     #[error("{}: {source}", path.display())]
     Io {

@@ -11,13 +11,19 @@
 //!
 //! Units are SI throughout (Pa, m, 1/m, m^4).
 
+pub mod bem;
+pub mod check;
 pub mod contact;
 pub mod error;
 pub mod figures;
 pub mod layer;
+pub mod material;
 pub mod prec;
 pub mod psd;
 pub mod quad;
+pub mod report;
+pub mod scene;
+pub mod tomlin;
 pub mod topography;
 pub mod units;
 

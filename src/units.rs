@@ -40,26 +40,42 @@ pub enum UnitError {
     WrongDimension { unit: String, expected: Dim },
 }
 
-fn prefix_scale(p: &str) -> Option<f64> {
+/// Decimal exponent of an SI prefix.
+fn prefix_exponent(p: &str) -> Option<i32> {
     Some(match p {
-        "" => 1.0,
-        "n" => 1e-9,
-        "u" | "µ" | "μ" => 1e-6,
-        "m" => 1e-3,
-        "c" => 1e-2,
-        "k" => 1e3,
-        "M" => 1e6,
-        "G" => 1e9,
-        "T" => 1e12,
+        "" => 0,
+        "n" => -9,
+        "u" | "µ" | "μ" => -6,
+        "m" => -3,
+        "c" => -2,
+        "k" => 3,
+        "M" => 6,
+        "G" => 9,
+        "T" => 12,
         _ => return None,
     })
 }
 
+/// 10^e applied to `value` with one correctly rounded operation (10^|e| is exact for |e| <= 22):
+/// `10 um` is exactly 1e-5 m, not 9.999999999999999e-6.
+fn apply_exponent(value: f64, e: i32) -> f64 {
+    if e >= 0 {
+        value * 10f64.powi(e)
+    } else {
+        value / 10f64.powi(-e)
+    }
+}
+
 /// Scale factor to SI of `unit` (which must have dimension `dim`).
 pub fn unit_scale(unit: &str, dim: Dim) -> Result<f64, UnitError> {
+    to_si(1.0, unit, dim)
+}
+
+/// `value` in `unit` converted to SI.
+pub fn to_si(value: f64, unit: &str, dim: Dim) -> Result<f64, UnitError> {
     let u: String = unit.chars().filter(|c| !c.is_whitespace()).collect();
     if u.is_empty() {
-        return Ok(1.0);
+        return Ok(value);
     }
     let wrong = || UnitError::WrongDimension {
         unit: unit.to_string(),
@@ -94,22 +110,25 @@ pub fn unit_scale(unit: &str, dim: Dim) -> Result<f64, UnitError> {
             if dim != Dim::Pressure || power != 1 {
                 return Err(wrong());
             }
-            return Ok(if base_with_prefix == "psi" {
-                6894.757293168361
-            } else {
-                1e5
-            });
+            return Ok(value
+                * if base_with_prefix == "psi" {
+                    6894.757293168361
+                } else {
+                    1e5
+                });
         }
         _ => {}
     }
     for (base, is_pressure) in [("Pa", true), ("m", false)] {
         if let Some(prefix) = base_with_prefix.strip_suffix(base) {
-            let Some(scale) = prefix_scale(prefix) else {
+            let Some(exponent) = prefix_exponent(prefix) else {
                 continue;
             };
             return match (is_pressure, dim) {
-                (true, Dim::Pressure) if power == 1 => Ok(scale),
-                (false, Dim::Length(k)) if k == power => Ok(scale.powi(power)),
+                (true, Dim::Pressure) if power == 1 => Ok(apply_exponent(value, exponent)),
+                (false, Dim::Length(k)) if k == power => {
+                    Ok(apply_exponent(value, exponent * power))
+                }
                 _ => Err(wrong()),
             };
         }
@@ -144,7 +163,7 @@ pub fn parse_quantity(text: &str, dim: Dim) -> Result<f64, UnitError> {
             })
         };
     }
-    Ok(value * unit_scale(unit, dim)?)
+    to_si(value, unit, dim)
 }
 
 #[cfg(test)]

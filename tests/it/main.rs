@@ -1,4 +1,7 @@
 //! Integration tests: one binary, one module per area.
+mod bem;
+mod check;
+mod cli_check;
 mod cli_response;
 mod contact;
 mod extreme;

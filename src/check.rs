@@ -1,0 +1,790 @@
+//! The design checks of `coatcheck check` (definitions: notes.md, "Distributions and peak
+//! values" and "Minimum thickness"; paper App. B, eqs. B8–B12, Figs. 6–7).
+//!
+//! - `bond-shear`: the interface shear is Gaussian with rms τ_rms (eq. B9); its peak at exceedance
+//!   ε solves erfc(τ_peak/(√2 τ_rms)) = ε. It must not exceed τ_bond / safety factor. Also
+//!   reported: P(|τ| > τ_bond), the fraction of the interface where the bond strength is exceeded.
+//! - `substrate-yield`: the mean pressure in real contact p0·A0/A (A/A0 = P(q1), eq. B11) and the
+//!   ε-peak of the interface normal stress (Persson's form centred at p0 with the interface width
+//!   σ_rms(d), eq. B8) must not exceed σ_yield / safety factor; the larger governs.
+//! - `min-thickness`: the smallest d_min such that the checks above pass at every d ≥ d_min. The
+//!   given thickness passes it when d ≥ d_min.
+//!
+//! A check's margin is the unused fraction of its limit: 1 − value/limit for an upper limit
+//! (stresses), 1 − d_min/d for the thickness; a check passes when its margin is ≥ 0.
+//!
+//! ## Minimum thickness: why scan, then refine
+//! τ_rms(d) is not monotone: it rises as the film thins and falls to 0 as d → 0 (a vanishing film
+//! has a frictionless top), so pass/fail in d can change more than once and a bisection on the
+//! whole range can land inside a failing band. [`Checker::min_thickness`] therefore
+//! 1. starts at the bulk bound d_hi = 50/q_L (q_L the spectrum's lowest wavenumber): the interface
+//!    kernels f, g decay like (1 + qd)e^{−qd}, at most twice that on a stiff substrate, so at
+//!    q_L·d = 50 the interface stresses are below 1e-19 of the surface ones and S(qd) = 1 to
+//!    rounding: every thicker film behaves the same. If d_hi fails, no thickness passes;
+//! 2. steps down in ln d with [`POINTS_PER_DECADE`] points per decade and stops at the first
+//!    failing thickness (the largest failing sample). Only the upper end of the failing region
+//!    matters for d_min, so nothing thinner is evaluated;
+//! 3. guards against a failing band narrower than the step: at every sampled local maximum of
+//!    the utilisation (value/limit) above [`PEAK_GUARD`] it maximises the utilisation between the
+//!    neighbouring samples by golden-section search and treats the maximiser as a failing sample
+//!    when it fails;
+//! 4. refines the pass/fail crossing in ln d until the bracket's relative width is at most
+//!    [`D_MIN_RTOL`], by the ITP method (a bisection safeguarded regula falsi on ln u: never more
+//!    steps than bisection plus one, far fewer on smooth utilisations); d_min is the bracket's
+//!    geometric midpoint and its error the half-width;
+//! 5. stops at the floor d_lo = max(1 nm, min(1e-6/q_L, 1e-4/q_hi)): a film thinner than 1 nm
+//!    is not a continuum, and when the floor is above 1 nm every mode of the spectrum has
+//!    q·d ≤ 1e-4 there, the thin-film limit in which the interface stresses only fall further
+//!    as d → 0 (τ ∝ g → q·d). When every sample down to d_lo passes, d_min is reported as d_lo
+//!    with `all_pass_to_floor` set (and a warning naming the floor).
+//!
+//! Each evaluation during the search requests only what the enabled checks need (bond-shear:
+//! τ_rms; substrate-yield: A/A0 and σ_rms at the interface), reusing one [`Engine`] per spectrum.
+
+use crate::contact::{self, Contact, Engine, NormalStress, Request};
+use crate::error::Error;
+use crate::layer::{Bilayer, Stack};
+use crate::prec::{Estimate, Settings, Termination};
+use crate::psd::Spectrum;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// Scan density of the minimum-thickness search (points per decade of d).
+pub const POINTS_PER_DECADE: f64 = 8.0;
+/// Relative width of the final d_min bracket (0.2 %: d_min to ±0.1 %).
+pub const D_MIN_RTOL: f64 = 2e-3;
+/// The bulk bound: q_L·d at which the film is effectively infinitely thick.
+pub const BULK_QD: f64 = 50.0;
+/// Sampled local maxima of the utilisation above this are refined (narrow failing bands).
+pub const PEAK_GUARD: f64 = 0.5;
+/// The thinnest film considered (m).
+pub const THINNEST: f64 = 1e-9;
+
+/// The checks that can be enabled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CheckKind {
+    BondShear,
+    SubstrateYield,
+    MinThickness,
+}
+
+impl CheckKind {
+    pub const ALL: [CheckKind; 3] = [
+        CheckKind::BondShear,
+        CheckKind::SubstrateYield,
+        CheckKind::MinThickness,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            CheckKind::BondShear => "bond-shear",
+            CheckKind::SubstrateYield => "substrate-yield",
+            CheckKind::MinThickness => "min-thickness",
+        }
+    }
+
+    pub fn from_name(s: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|c| c.name() == s.trim())
+    }
+}
+
+/// Which checks run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Checks {
+    pub bond_shear: bool,
+    pub substrate_yield: bool,
+    pub min_thickness: bool,
+}
+
+impl Checks {
+    pub fn all() -> Self {
+        Self {
+            bond_shear: true,
+            substrate_yield: true,
+            min_thickness: true,
+        }
+    }
+
+    pub fn none() -> Self {
+        Self {
+            bond_shear: false,
+            substrate_yield: false,
+            min_thickness: false,
+        }
+    }
+
+    pub fn enable(&mut self, c: CheckKind) {
+        match c {
+            CheckKind::BondShear => self.bond_shear = true,
+            CheckKind::SubstrateYield => self.substrate_yield = true,
+            CheckKind::MinThickness => self.min_thickness = true,
+        }
+    }
+
+    /// The engine quantities the stress checks need.
+    pub fn request(&self) -> Request {
+        Request {
+            sigma_top: false,
+            sigma_interface: self.substrate_yield,
+            tau_interface: self.bond_shear,
+            e_eff: false,
+        }
+    }
+}
+
+/// Pass/fail criteria.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Criteria {
+    /// Exceedance probability that defines a peak value (fraction of the interface area).
+    pub epsilon: f64,
+    /// Limits are strengths divided by this (≥ 1).
+    pub safety_factor: f64,
+    pub checks: Checks,
+}
+
+impl Default for Criteria {
+    fn default() -> Self {
+        Self {
+            epsilon: crate::prec::DEFAULT_EPSILON,
+            safety_factor: 1.0,
+            checks: Checks::all(),
+        }
+    }
+}
+
+/// A coating design without its thickness: the layers, the load, the strengths and criteria.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Design {
+    pub layers: Bilayer,
+    /// Nominal pressure p0 (Pa).
+    pub pressure: f64,
+    /// Substrate yield strength (Pa); required by substrate-yield.
+    pub yield_strength: Option<f64>,
+    /// Bond shear strength (Pa).
+    pub bond_strength: f64,
+    pub criteria: Criteria,
+}
+
+/// The outcome of one check at one thickness.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CheckResult {
+    pub kind: CheckKind,
+    /// The checked value (Pa for stresses, m for min-thickness).
+    pub value: Estimate,
+    /// The limit (`None` for min-thickness when no thickness passes).
+    pub limit: Option<f64>,
+    /// Unused fraction of the limit (≥ 0 passes); `None` when there is no limit.
+    pub margin: Option<f64>,
+    pub pass: bool,
+    /// True when the value is within its error estimate of the limit (the verdict is fragile).
+    pub undecided: bool,
+}
+
+/// Everything computed at one thickness.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Evaluation {
+    pub contact: Contact,
+    /// p0·A0/A (Pa).
+    pub mean_contact_pressure: Estimate,
+    /// τ at exceedance ε (Pa).
+    pub tau_peak: Option<Estimate>,
+    /// P(|τ| > τ_bond).
+    pub bond_exceedance: Option<f64>,
+    /// Interface normal stress at exceedance ε (Pa).
+    pub sigma_peak_interface: Option<Estimate>,
+    /// P(σ_interface > σ_yield).
+    pub yield_exceedance: Option<f64>,
+    /// bond-shear and substrate-yield (those enabled).
+    pub checks: Vec<CheckResult>,
+}
+
+/// The minimum thickness.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MinThickness {
+    /// d_min with the bracket half-width as error; `None` when no thickness passes.
+    pub thickness: Option<Estimate>,
+    /// The check that fails just below d_min (or at every thickness when none passes).
+    pub governing: Option<CheckKind>,
+    /// The scan range [d_lo, d_hi].
+    pub floor: f64,
+    pub bulk: f64,
+    /// Every scanned thickness passed down to the floor (d_min is then the floor).
+    pub all_pass_to_floor: bool,
+    /// Engine evaluations used.
+    pub evaluations: usize,
+}
+
+/// The verdict for one design at its thickness.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Outcome {
+    pub thickness: f64,
+    pub evaluation: Evaluation,
+    pub min_thickness: Option<MinThickness>,
+    /// All enabled checks (stress checks, then min-thickness).
+    pub checks: Vec<CheckResult>,
+    pub pass: bool,
+    /// The enabled check with the smallest margin (the one that decides the verdict).
+    pub governing: Option<CheckKind>,
+    pub warnings: Vec<String>,
+}
+
+/// One spectrum and one design, with the engine's d-independent precomputation.
+pub struct Checker {
+    engine: Engine,
+    design: Design,
+    q_low: f64,
+    q_high: f64,
+}
+
+impl Checker {
+    pub fn new(spectrum: &Spectrum, design: Design, settings: Settings) -> Result<Self, Error> {
+        let c = &design.criteria;
+        if !(c.epsilon.is_finite() && c.epsilon > 0.0 && c.epsilon < 1.0) {
+            return Err(Error::invalid("epsilon", c.epsilon, "0 < epsilon < 1"));
+        }
+        if !(c.safety_factor.is_finite() && c.safety_factor > 0.0) {
+            return Err(Error::invalid(
+                "safety factor",
+                c.safety_factor,
+                "a finite factor > 0",
+            ));
+        }
+        if !(design.pressure.is_finite() && design.pressure > 0.0) {
+            return Err(Error::invalid(
+                "pressure",
+                design.pressure,
+                "a finite nominal pressure > 0 in Pa",
+            ));
+        }
+        if !(design.bond_strength.is_finite() && design.bond_strength > 0.0) {
+            return Err(Error::invalid(
+                "bond shear strength",
+                design.bond_strength,
+                "a finite strength > 0 in Pa",
+            ));
+        }
+        if c.checks.substrate_yield && design.yield_strength.is_none() {
+            return Err(Error::invalid(
+                "substrate",
+                "no yield strength",
+                "a substrate yield_strength for the substrate-yield check",
+            ));
+        }
+        let (q_low, q_high) = spectrum.support();
+        Ok(Self {
+            engine: Engine::new(spectrum, settings),
+            design,
+            q_low,
+            q_high,
+        })
+    }
+
+    pub fn design(&self) -> &Design {
+        &self.design
+    }
+
+    fn stack(&self, thickness: f64) -> Result<Stack, Error> {
+        if !(thickness.is_finite() && thickness > 0.0) {
+            return Err(Error::invalid(
+                "thickness",
+                thickness,
+                "a finite film thickness > 0 in m",
+            ));
+        }
+        Ok(Stack {
+            layers: self.design.layers,
+            thickness,
+        })
+    }
+
+    fn limit(&self, strength: f64) -> f64 {
+        strength / self.design.criteria.safety_factor
+    }
+
+    /// Everything at one thickness: all engine quantities and the stress checks.
+    pub fn evaluate(&self, thickness: f64) -> Result<Evaluation, Error> {
+        let contact = self.engine.evaluate(
+            &self.stack(thickness)?,
+            self.design.pressure,
+            Request::all(),
+        )?;
+        self.assess(contact, true)
+    }
+
+    /// The stress checks from a contact result. With `extras`, also the exceedances of the
+    /// limits themselves (not needed while searching for d_min).
+    fn assess(&self, contact: Contact, extras: bool) -> Result<Evaluation, Error> {
+        let d = &self.design;
+        let eps = d.criteria.epsilon;
+        let p0 = d.pressure;
+        let area = contact.area_fraction;
+        if area.value.is_nan() || area.value <= 0.0 {
+            return Err(Error::Numerical {
+                what: "contact area",
+                detail: format!("A/A0 = {} at d = {} m", area.value, contact.thickness),
+            });
+        }
+        let mean_contact_pressure = area.map(|a| p0 / a, |a| p0 / (a * a));
+        let on = d.criteria.checks;
+        let mut checks = Vec::new();
+        let (mut tau_peak, mut bond_exceedance) = (None, None);
+        if let Some(tau) = contact.tau_rms_interface {
+            let k = contact::tau_peak(1.0, eps);
+            let peak = tau.map(|t| k * t, |_| k);
+            if on.bond_shear {
+                checks.push(upper_check(
+                    CheckKind::BondShear,
+                    peak,
+                    self.limit(d.bond_strength),
+                ));
+            }
+            tau_peak = Some(peak);
+            if extras {
+                bond_exceedance = Some(contact::tau_exceedance(tau.value, d.bond_strength));
+            }
+        }
+        let (mut sigma_peak_interface, mut yield_exceedance) = (None, None);
+        if let Some(sigma) = contact.sigma_rms_interface {
+            let at = |s: f64| NormalStress { p0, sigma_rms: s };
+            let mut peak = at(sigma.value).peak(eps);
+            peak.status = Estimate::worst(peak.status, sigma.status);
+            if extras {
+                // First-order propagation of σ_rms's error into the peak.
+                peak.err += (at(sigma.value + sigma.err).peak(eps).value - peak.value).abs();
+            }
+            if let Some(y) = d.yield_strength {
+                if on.substrate_yield {
+                    let governing = if peak.value >= mean_contact_pressure.value {
+                        peak
+                    } else {
+                        mean_contact_pressure
+                    };
+                    checks.push(upper_check(
+                        CheckKind::SubstrateYield,
+                        governing,
+                        self.limit(y),
+                    ));
+                }
+                if extras {
+                    yield_exceedance = Some(at(sigma.value).exceedance(y));
+                }
+            }
+            sigma_peak_interface = Some(peak);
+        }
+        Ok(Evaluation {
+            contact,
+            mean_contact_pressure,
+            tau_peak,
+            bond_exceedance,
+            sigma_peak_interface,
+            yield_exceedance,
+            checks,
+        })
+    }
+
+    /// Utilisation (value/limit, > 1 fails) of the enabled stress checks at `thickness`, with the
+    /// check that has the largest; only what those checks need is computed.
+    fn utilisation(&self, thickness: f64) -> Result<(f64, Option<CheckKind>), Error> {
+        let req = self.design.criteria.checks.request();
+        let contact = self
+            .engine
+            .evaluate(&self.stack(thickness)?, self.design.pressure, req)?;
+        let ev = self.assess(contact, false)?;
+        let mut worst = (0.0, None);
+        for c in &ev.checks {
+            let u = c.value.value / c.limit.unwrap_or(f64::INFINITY);
+            if u > worst.0 || worst.1.is_none() {
+                worst = (u, Some(c.kind));
+            }
+        }
+        Ok(worst)
+    }
+
+    /// The scan range [d_lo, d_hi] of the minimum-thickness search (module docs).
+    pub fn scan_range(&self) -> (f64, f64) {
+        let lo = (1e-6 / self.q_low).min(1e-4 / self.q_high).max(THINNEST);
+        let hi = BULK_QD / self.q_low;
+        (lo.min(hi), hi)
+    }
+
+    /// The smallest thickness above which every enabled stress check passes (module docs).
+    pub fn min_thickness(&self) -> Result<MinThickness, Error> {
+        let (lo, hi) = self.scan_range();
+        search_min_thickness(lo, hi, |d| self.utilisation(d))
+    }
+
+    /// The full check at the design's thickness: all quantities, the enabled checks, d_min.
+    pub fn run(&self, thickness: f64) -> Result<Outcome, Error> {
+        let evaluation = self.evaluate(thickness)?;
+        let checks_on = self.design.criteria.checks;
+        let min_thickness = if checks_on.min_thickness {
+            Some(self.min_thickness()?)
+        } else {
+            None
+        };
+        let mut checks = evaluation.checks.clone();
+        let mut warnings = Vec::new();
+        if let Some(m) = &min_thickness {
+            let value = Estimate::exact(thickness);
+            checks.push(match m.thickness {
+                Some(dm) => {
+                    let pass = thickness >= dm.value;
+                    CheckResult {
+                        kind: CheckKind::MinThickness,
+                        value,
+                        limit: Some(dm.value),
+                        margin: Some(1.0 - dm.value / thickness),
+                        pass,
+                        undecided: (thickness - dm.value).abs() <= dm.err,
+                    }
+                }
+                None => CheckResult {
+                    kind: CheckKind::MinThickness,
+                    value,
+                    limit: None,
+                    margin: None,
+                    pass: false,
+                    undecided: false,
+                },
+            });
+            if m.thickness.is_none() {
+                warnings.push(
+                    "no film thickness passes: even a bulk film fails the enabled checks".into(),
+                );
+            } else if m.all_pass_to_floor {
+                warnings.push(format!(
+                    "every thickness down to the scan floor {:.3e} m passes; d_min is reported as that floor",
+                    m.floor
+                ));
+            }
+        }
+        for c in &checks {
+            if c.undecided {
+                warnings.push(format!(
+                    "{}: the value is within its numerical error of the limit; the verdict is fragile",
+                    c.kind.name()
+                ));
+            }
+            if c.value.status == Termination::ToleranceNotReached {
+                warnings.push(format!(
+                    "{}: the requested tolerance was not reached (error estimate {:.2e})",
+                    c.kind.name(),
+                    c.value.err
+                ));
+            }
+        }
+        if self.q_high > 2.0 * self.q_low && evaluation.contact.low_octave_share > 0.5 {
+            warnings.push(format!(
+                "{:.0} % of the contact stress variance comes from the lowest octave of the spectrum: the result depends on where the data start (q_min)",
+                100.0 * evaluation.contact.low_octave_share
+            ));
+        }
+        let pass = checks.iter().all(|c| c.pass);
+        let governing = checks
+            .iter()
+            .min_by(|a, b| {
+                let ma = a.margin.unwrap_or(f64::NEG_INFINITY);
+                let mb = b.margin.unwrap_or(f64::NEG_INFINITY);
+                ma.total_cmp(&mb)
+            })
+            .map(|c| c.kind);
+        Ok(Outcome {
+            thickness,
+            evaluation,
+            min_thickness,
+            checks,
+            pass,
+            governing,
+            warnings,
+        })
+    }
+
+    /// Evaluations at many thicknesses, in parallel.
+    pub fn sweep(&self, thicknesses: &[f64]) -> Result<Vec<Evaluation>, Error> {
+        thicknesses.par_iter().map(|&d| self.evaluate(d)).collect()
+    }
+}
+
+/// The minimum-thickness search on [lo, hi] (module docs, steps 1–5) for a utilisation
+/// function `util(d) = (max over checks of value/limit, the check attaining it)`; a thickness
+/// fails when its utilisation exceeds 1.
+pub fn search_min_thickness(
+    lo: f64,
+    hi: f64,
+    mut util: impl FnMut(f64) -> Result<(f64, Option<CheckKind>), Error>,
+) -> Result<MinThickness, Error> {
+    let mut evaluations = 0usize;
+    let mut util = |x: f64| {
+        evaluations += 1;
+        util(x.exp())
+    };
+    let result = |thickness, governing, all_pass_to_floor, evaluations| MinThickness {
+        thickness,
+        governing,
+        floor: lo,
+        bulk: hi,
+        all_pass_to_floor,
+        evaluations,
+    };
+    let (u_hi, kind_hi) = util(hi.ln())?;
+    if kind_hi.is_none() {
+        // No stress check enabled: every thickness passes.
+        return Ok(result(Some(Estimate::exact(lo)), None, true, 1));
+    }
+    if u_hi > 1.0 {
+        return Ok(result(None, kind_hi, false, 1));
+    }
+    let n = ((hi / lo).log10() * POINTS_PER_DECADE).ceil().max(1.0) as usize;
+    let h = (hi / lo).ln() / n as f64;
+    // Samples from the top: (ln d, utilisation).
+    let mut samples: Vec<(f64, f64)> = vec![(hi.ln(), u_hi)];
+    // (ln d, u) failing, (ln d, u) passing above it, and the failing check.
+    type Sample = (f64, f64);
+    let mut failing: Option<(Sample, Sample, Option<CheckKind>)> = None;
+    for k in 1..=n {
+        let x = hi.ln() - k as f64 * h;
+        let (u, kind) = util(x)?;
+        samples.push((x, u));
+        if u > 1.0 {
+            failing = Some(((x, u), samples[k - 1], kind));
+            break;
+        }
+        // A sampled local maximum: look between the neighbours for a narrow failing band.
+        if k >= 2 {
+            let (a, b, c) = (samples[k - 2], samples[k - 1], samples[k]);
+            if b.1 > a.1 && b.1 >= c.1 && b.1 > PEAK_GUARD {
+                let (xm, um, kind) = golden_max(c.0, a.0, &mut util)?;
+                if um > 1.0 {
+                    // The nearest passing sample above the failing point brackets the
+                    // band's upper edge.
+                    failing = Some(((xm, um), if xm < b.0 { b } else { a }, kind));
+                    break;
+                }
+            }
+        }
+    }
+    let Some((fail, pass, mut governing)) = failing else {
+        return Ok(result(Some(Estimate::exact(lo)), None, true, evaluations));
+    };
+    // Refine the crossing of ln u through 0 by the ITP method (Oliveira & Takahashi 2020):
+    // never more evaluations than bisection plus one, superlinear on smooth utilisations.
+    let (mut x_fail, mut y_fail) = (fail.0, fail.1.ln());
+    let (mut x_pass, mut y_pass) = (pass.0, pass.1.ln());
+    let eps = 0.5 * D_MIN_RTOL.ln_1p();
+    let n_max = ((x_pass - x_fail) / (2.0 * eps)).log2().ceil().max(0.0) as i32 + 1;
+    let k1 = 0.2 / (x_pass - x_fail);
+    let mut j = 0;
+    while x_pass - x_fail > 2.0 * eps {
+        let w = x_pass - x_fail;
+        let half = 0.5 * (x_fail + x_pass);
+        let r = (eps * 2f64.powi(n_max - j) - 0.5 * w).max(0.0);
+        let delta = k1 * w * w;
+        // Regula falsi on y = ln u (y_fail > 0 ≥ y_pass).
+        let falsi = if y_fail.is_finite() && y_pass.is_finite() && y_fail > y_pass {
+            (x_fail * y_pass - x_pass * y_fail) / (y_pass - y_fail)
+        } else {
+            half
+        };
+        let sigma = (half - falsi).signum();
+        let truncated = if delta <= (half - falsi).abs() {
+            falsi + sigma * delta
+        } else {
+            half
+        };
+        let x = if (truncated - half).abs() <= r {
+            truncated
+        } else {
+            half - sigma * r
+        };
+        let (u, kind) = util(x)?;
+        if u > 1.0 {
+            (x_fail, y_fail) = (x, u.ln());
+            governing = kind;
+        } else {
+            (x_pass, y_pass) = (x, u.ln());
+        }
+        j += 1;
+    }
+    let (d_fail, d_pass) = (x_fail.exp(), x_pass.exp());
+    let mid = (0.5 * (x_fail + x_pass)).exp();
+    let d_min = Estimate::new(mid, 0.5 * (d_pass - d_fail), Termination::Converged);
+    Ok(result(Some(d_min), governing, false, evaluations))
+}
+
+/// A stress check against an upper limit.
+fn upper_check(kind: CheckKind, value: Estimate, limit: f64) -> CheckResult {
+    CheckResult {
+        kind,
+        value,
+        limit: Some(limit),
+        margin: Some(1.0 - value.value / limit),
+        pass: value.value <= limit,
+        undecided: (value.value - limit).abs() <= value.err,
+    }
+}
+
+/// Golden-section search for the maximum of `f` on [a, b]: (argmax, max, its check). Stops
+/// early at a point above 1 (a failure is all the narrow-band guard needs), else when the
+/// bracket is 1e-3 wide in ln d, far below the scan step.
+type Util<'a> = dyn FnMut(f64) -> Result<(f64, Option<CheckKind>), Error> + 'a;
+
+fn golden_max(
+    mut a: f64,
+    mut b: f64,
+    f: &mut Util<'_>,
+) -> Result<(f64, f64, Option<CheckKind>), Error> {
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    let mut c = b - r * (b - a);
+    let mut d = a + r * (b - a);
+    let (mut fc, mut fd) = (f(c)?, f(d)?);
+    loop {
+        if fc.0 > 1.0 {
+            return Ok((c, fc.0, fc.1));
+        }
+        if fd.0 > 1.0 {
+            return Ok((d, fd.0, fd.1));
+        }
+        if b - a <= 1e-3 {
+            break;
+        }
+        if fc.0 >= fd.0 {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - r * (b - a);
+            fc = f(c)?;
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + r * (b - a);
+            fd = f(d)?;
+        }
+    }
+    Ok(if fc.0 >= fd.0 {
+        (c, fc.0, fc.1)
+    } else {
+        (d, fd.0, fd.1)
+    })
+}
+
+/// Log-spaced thicknesses for `from:to:n` (n ≥ 2 includes both ends; n = 1 gives `from`).
+pub fn log_space(from: f64, to: f64, n: usize) -> Vec<f64> {
+    if n <= 1 {
+        return vec![from];
+    }
+    let (a, b) = (from.ln(), to.ln());
+    (0..n)
+        .map(|i| {
+            if i == 0 {
+                from
+            } else if i == n - 1 {
+                to
+            } else {
+                (a + (b - a) * i as f64 / (n - 1) as f64).exp()
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn golden_section_finds_a_smooth_maximum() {
+        let mut f = |x: f64| Ok((0.9 - (x - 0.7) * (x - 0.7), None));
+        let (x, m, _) = golden_max(-2.0, 3.0, &mut f).unwrap();
+        assert!((x - 0.7).abs() < 1e-3, "{x}");
+        assert!((m - 0.9).abs() < 1e-6, "{m}");
+        // Stops early at a point above 1.
+        let mut f = |x: f64| Ok((1.5 - (x - 0.7) * (x - 0.7), Some(CheckKind::BondShear)));
+        let (x, m, k) = golden_max(-2.0, 3.0, &mut f).unwrap();
+        assert!(m > 1.0 && (x - 0.7).abs() < 0.71 && k == Some(CheckKind::BondShear));
+    }
+
+    /// Synthetic utilisations u(ln d) with known crossings.
+    fn search(u: impl Fn(f64) -> f64) -> MinThickness {
+        search_min_thickness(1e-9, 1e-2, |d| Ok((u(d.ln()), Some(CheckKind::BondShear)))).unwrap()
+    }
+
+    fn assert_crossing(m: &MinThickness, want: f64) {
+        let d = m.thickness.unwrap();
+        assert!(!m.all_pass_to_floor);
+        assert!((d.value - want).abs() <= d.err * 1.0001, "{d:?} vs {want}");
+        assert!(d.err <= 0.5 * D_MIN_RTOL * d.value * 1.001, "{d:?}");
+    }
+
+    #[test]
+    fn monotone_utilisation_crossing() {
+        // u = (d0/d)^1.5 fails below d0 = 3.7e-6.
+        let m = search(|x| (3.7e-6f64.ln() - x).exp().powf(1.5));
+        assert_crossing(&m, 3.7e-6);
+        // 29 scan samples (3.4 decades at 8 per decade, plus the bulk bound), then ITP: a
+        // smooth power law needs about 3 refinement steps where bisection needs 8.
+        assert!(m.evaluations <= 33, "{}", m.evaluations);
+    }
+
+    #[test]
+    fn a_failing_band_gives_its_upper_edge() {
+        // A broad hump in ln d failing on [1e-7, 2e-5]; passing below and above.
+        let (a, b) = (1e-7f64.ln(), 2e-5f64.ln());
+        let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+        let m = search(|x| 2.0 - ((x - mid) / half).powi(2));
+        assert_crossing(&m, 2e-5);
+        // Bisection on the whole range cannot work: both ends pass.
+        assert!(2.0 - ((1e-9f64.ln() - mid) / half).powi(2) < 1.0);
+    }
+
+    #[test]
+    fn a_band_narrower_than_the_scan_step_is_found() {
+        // Peak 1.02 midway between two samples (the scan step in ln d is h = ln(1e7)/56);
+        // it fails for |ln d − c| < 0.1, a band narrower than the step, so no sample fails.
+        let h = 1e7f64.ln() / 56.0;
+        let c = 1e-2f64.ln() - 20.5 * h;
+        let m = search(|x| 1.02 - 2.0 * (x - c).powi(2));
+        let edge = (c + 0.1).exp();
+        assert_crossing(&m, edge);
+    }
+
+    #[test]
+    fn ends_of_the_search() {
+        let m = search(|_| 1.5);
+        assert_eq!(m.thickness, None);
+        assert_eq!(m.governing, Some(CheckKind::BondShear));
+        let m = search(|_| 0.2);
+        assert!(m.all_pass_to_floor);
+        assert_eq!(m.thickness.unwrap().value, 1e-9);
+    }
+
+    #[test]
+    fn log_space_hits_both_ends() {
+        let v = log_space(1e-6, 1e-3, 4);
+        assert_eq!(v.len(), 4);
+        assert_eq!(v[0], 1e-6);
+        assert_eq!(v[3], 1e-3);
+        assert!((v[1] / 1e-5 - 1.0).abs() < 1e-14);
+        assert_eq!(log_space(2.0, 3.0, 1), vec![2.0]);
+    }
+
+    #[test]
+    fn check_names_round_trip() {
+        for c in CheckKind::ALL {
+            assert_eq!(CheckKind::from_name(c.name()), Some(c));
+        }
+        assert_eq!(CheckKind::from_name("bond"), None);
+    }
+
+    #[test]
+    fn upper_checks_margin_and_pass() {
+        let c = upper_check(CheckKind::BondShear, Estimate::exact(2.0), 8.0);
+        assert!(c.pass && (c.margin.unwrap() - 0.75).abs() < 1e-15 && !c.undecided);
+        let c = upper_check(
+            CheckKind::BondShear,
+            Estimate::new(8.1, 0.2, Termination::Converged),
+            8.0,
+        );
+        assert!(!c.pass && c.undecided && c.margin.unwrap() < 0.0);
+    }
+}

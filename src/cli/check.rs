@@ -1,0 +1,243 @@
+//! `coatcheck check`: judge one coating design (scene file and/or flags).
+
+use coatcheck::Error;
+use coatcheck::check::{Checker, log_space};
+use coatcheck::material::Library;
+use coatcheck::report::{self, Format};
+use coatcheck::scene::Scene;
+use coatcheck::units::{Dim, parse_quantity};
+use std::path::PathBuf;
+
+const AFTER_HELP: &str = "\
+Exit codes:
+  0  every enabled check passes at the given thickness
+  1  a check fails (the report says which)
+  2  bad input (file, value, unit, material, scene) or a numerical failure; nothing is written
+
+Flags override the scene file's keys of the same name (roughness.*, film.*, substrate.*, bond.*,
+load.pressure, criteria.*, numerics.rtol). Values accept units: 10um, \"0.1 MPa\", 200GPa, \"1e5 1/m\".
+Checks: bond-shear (peak interface shear vs bond strength), substrate-yield (mean real-contact
+pressure and peak interface normal stress vs yield), min-thickness (smallest film thickness
+above which every check passes at every thickness).
+
+Example: coatcheck check examples/paper-rubber-on-steel.toml --thickness 5um --format json";
+
+/// Arguments of `coatcheck check`.
+#[derive(clap::Args, Debug)]
+#[command(after_help = AFTER_HELP)]
+pub struct CheckArgs {
+    /// Scene file (TOML); flags override its values.
+    pub scene: Option<PathBuf>,
+    /// Measured PSD file (columns q [1/m], C [m^4]); relative to the working directory.
+    #[arg(long, allow_hyphen_values = true)]
+    pub psd: Option<String>,
+    /// Measured heights (line scans or a height map, as `coatcheck psd` reads them); the PSD is
+    /// computed with the `coatcheck psd` defaults.
+    #[arg(long, allow_hyphen_values = true)]
+    pub profile: Option<String>,
+    /// Roughness model: self-affine (eq. 2) or gaussian (eq. 5).
+    #[arg(long)]
+    pub model: Option<String>,
+    /// Hurst exponent H of the self-affine model.
+    #[arg(long, allow_hyphen_values = true)]
+    pub hurst: Option<String>,
+    /// Lowest wavenumber q0 of the model (or centre of the Gaussian band), e.g. "1e5 1/m".
+    #[arg(long, allow_hyphen_values = true)]
+    pub q0: Option<String>,
+    /// Short-wavelength cut-off q1 of the self-affine model.
+    #[arg(long, allow_hyphen_values = true)]
+    pub q1: Option<String>,
+    /// Roll-off wavenumber q_r of the self-affine model (flat below it).
+    #[arg(long, allow_hyphen_values = true)]
+    pub roll_off: Option<String>,
+    /// Width Q of the Gaussian band.
+    #[arg(long, allow_hyphen_values = true)]
+    pub width: Option<String>,
+    /// Scale the spectrum to this rms slope.
+    #[arg(long, allow_hyphen_values = true)]
+    pub rms_slope: Option<String>,
+    /// Scale the spectrum to this rms height, e.g. 1um.
+    #[arg(long, allow_hyphen_values = true)]
+    pub rms_height: Option<String>,
+    /// Use measured data only above this wavenumber.
+    #[arg(long, allow_hyphen_values = true)]
+    pub q_min: Option<String>,
+    /// Use measured data only below this wavenumber.
+    #[arg(long, allow_hyphen_values = true)]
+    pub q_max: Option<String>,
+    /// Film material (name from `coatcheck materials`).
+    #[arg(long)]
+    pub film: Option<String>,
+    /// Film Young's modulus (instead of a material name).
+    #[arg(long, allow_hyphen_values = true)]
+    pub film_youngs_modulus: Option<String>,
+    /// Film Poisson ratio (with --film-youngs-modulus).
+    #[arg(long, allow_hyphen_values = true)]
+    pub film_poisson_ratio: Option<String>,
+    /// Film thickness d, e.g. 10um.
+    #[arg(long, allow_hyphen_values = true)]
+    pub thickness: Option<String>,
+    /// Substrate material (name from `coatcheck materials`).
+    #[arg(long)]
+    pub substrate: Option<String>,
+    /// Substrate Young's modulus (instead of a material name).
+    #[arg(long, allow_hyphen_values = true)]
+    pub substrate_youngs_modulus: Option<String>,
+    /// Substrate Poisson ratio (with --substrate-youngs-modulus).
+    #[arg(long, allow_hyphen_values = true)]
+    pub substrate_poisson_ratio: Option<String>,
+    /// Substrate yield strength (overrides the material's).
+    #[arg(long, allow_hyphen_values = true)]
+    pub yield_strength: Option<String>,
+    /// Bond (name from `coatcheck materials`).
+    #[arg(long)]
+    pub bond: Option<String>,
+    /// Bond shear strength (instead of a bond name).
+    #[arg(long, allow_hyphen_values = true)]
+    pub shear_strength: Option<String>,
+    /// Nominal pressure p0, e.g. "0.1 MPa".
+    #[arg(long, allow_hyphen_values = true)]
+    pub pressure: Option<String>,
+    /// Exceedance probability that defines a peak value (default 1e-6).
+    #[arg(long, allow_hyphen_values = true)]
+    pub epsilon: Option<String>,
+    /// Safety factor: limits are strengths divided by it (default 1).
+    #[arg(long, allow_hyphen_values = true)]
+    pub safety_factor: Option<String>,
+    /// Checks to run, comma-separated (default: bond-shear,substrate-yield,min-thickness).
+    #[arg(long)]
+    pub checks: Option<String>,
+    /// Relative tolerance of the contact integrals (default 1e-8).
+    #[arg(long, allow_hyphen_values = true)]
+    pub rtol: Option<String>,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "table")]
+    pub format: Format,
+    /// Write the report to this file (atomically) instead of standard output.
+    #[arg(long)]
+    pub output: Option<PathBuf>,
+    /// Directory of extra material files (*.toml) that add to or override the bundled library.
+    #[arg(long)]
+    pub materials: Option<PathBuf>,
+    /// Print the results over log-spaced thicknesses FROM:TO:N (e.g. 1um:1mm:25) instead of
+    /// one check; exit code 0 unless the input is bad.
+    #[arg(long, value_name = "FROM:TO:N")]
+    pub sweep_thickness: Option<String>,
+}
+
+impl CheckArgs {
+    fn overrides(&self) -> Vec<(&'static str, String)> {
+        let all: [(&'static str, &Option<String>); 27] = [
+            ("roughness.psd", &self.psd),
+            ("roughness.profile", &self.profile),
+            ("roughness.model", &self.model),
+            ("roughness.hurst", &self.hurst),
+            ("roughness.q0", &self.q0),
+            ("roughness.q1", &self.q1),
+            ("roughness.roll_off", &self.roll_off),
+            ("roughness.width", &self.width),
+            ("roughness.rms_slope", &self.rms_slope),
+            ("roughness.rms_height", &self.rms_height),
+            ("roughness.q_min", &self.q_min),
+            ("roughness.q_max", &self.q_max),
+            ("film.material", &self.film),
+            ("film.youngs_modulus", &self.film_youngs_modulus),
+            ("film.poisson_ratio", &self.film_poisson_ratio),
+            ("film.thickness", &self.thickness),
+            ("substrate.material", &self.substrate),
+            ("substrate.youngs_modulus", &self.substrate_youngs_modulus),
+            ("substrate.poisson_ratio", &self.substrate_poisson_ratio),
+            ("substrate.yield_strength", &self.yield_strength),
+            ("bond.material", &self.bond),
+            ("bond.shear_strength", &self.shear_strength),
+            ("load.pressure", &self.pressure),
+            ("criteria.epsilon", &self.epsilon),
+            ("criteria.safety_factor", &self.safety_factor),
+            ("criteria.checks", &self.checks),
+            ("numerics.rtol", &self.rtol),
+        ];
+        all.into_iter()
+            .filter_map(|(k, v)| v.clone().map(|v| (k, v)))
+            .collect()
+    }
+}
+
+/// `FROM:TO:N` with lengths in any unit.
+fn parse_sweep(text: &str) -> Result<(f64, f64, usize), Error> {
+    let bad = |why: &str| Error::Value {
+        origin: "--sweep-thickness".into(),
+        msg: format!(
+            "'{text}': {why} (expected FROM:TO:N with thicknesses > 0 and N >= 1, e.g. 1um:1mm:25)"
+        ),
+    };
+    let parts: Vec<&str> = text.split(':').collect();
+    let [a, b, n] = parts[..] else {
+        return Err(bad("expected three fields"));
+    };
+    let len = |s: &str| {
+        parse_quantity(s, Dim::Length(1))
+            .map_err(|e| bad(&e.to_string()))
+            .and_then(|x| {
+                if x.is_finite() && x > 0.0 {
+                    Ok(x)
+                } else {
+                    Err(bad("thicknesses must be > 0"))
+                }
+            })
+    };
+    let n: usize = n
+        .trim()
+        .parse()
+        .map_err(|_| bad("N is not a whole number"))?;
+    if n == 0 || n > 100_000 {
+        return Err(bad("N out of range"));
+    }
+    Ok((len(a)?, len(b)?, n))
+}
+
+/// Run the check; the exit code is 0 (pass) or 1 (fail).
+pub fn run(args: CheckArgs) -> Result<i32, Error> {
+    let library = Library::with_dir(args.materials.as_deref())?;
+    let sweep = args
+        .sweep_thickness
+        .as_deref()
+        .map(parse_sweep)
+        .transpose()?;
+    let scene = Scene::load(args.scene.as_deref(), &args.overrides(), &library)?;
+    let (spectrum, read_warnings) = scene.roughness.spectrum()?;
+    for w in &read_warnings {
+        eprintln!("coatcheck: warning: {w}");
+    }
+    let checker = Checker::new(&spectrum, scene.design(), scene.settings)?;
+    let (text, code) = if let Some((from, to, n)) = sweep {
+        let rows = checker.sweep(&log_space(from, to, n))?;
+        (report::sweep(&rows, args.format)?, 0)
+    } else {
+        let thickness = scene.thickness.ok_or_else(|| Error::Value {
+            origin: scene
+                .file
+                .as_ref()
+                .map_or("scene".into(), |p| p.display().to_string()),
+            msg: "film.thickness is missing; give the film thickness (thickness = \"10 um\" under [film], or --thickness 10um)".into(),
+        })?;
+        let outcome = checker.run(thickness)?;
+        let text = match args.format {
+            Format::Table => report::human(&scene, &outcome),
+            Format::Json => format!("{:#}\n", report::json(&scene, &outcome)),
+            Format::Csv => report::csv(&scene, &outcome)?,
+        };
+        (text, if outcome.pass { 0 } else { 1 })
+    };
+    match &args.output {
+        Some(path) => report::write_atomic(path, &text)?,
+        None => emit(&text),
+    }
+    Ok(code)
+}
+
+/// Print to standard output; a closed pipe (e.g. `| head`) is not an error.
+pub fn emit(text: &str) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+}

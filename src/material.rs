@@ -1,0 +1,549 @@
+//! The materials library: elastic films and substrates (E, ν, optional yield strength) and
+//! bonds (shear strength), one TOML file per entry under `materials/`.
+//!
+//! Each file has `schema_version` (= [`SCHEMA_VERSION`]), `name`, `kind` (`film`, `substrate` or
+//! `bond`), values as strings with units parsed by [`crate::units`] (`youngs_modulus = "2 MPa"`,
+//! `poisson_ratio = 0.5`, `yield_strength = "250 MPa"`, `shear_strength = "10 MPa"`) and a
+//! `source` note. The bundled files are compiled into the binary ([`BUILTIN`]); a directory given
+//! with `--materials DIR` adds entries or overrides bundled ones of the same name.
+//!
+//! `kind` says what the material is usually used as; any elastic material may be used as film or
+//! substrate (the layered solution, eq. (7), holds for either stiffness order), but the
+//! substrate-yield check needs a yield strength.
+
+use crate::error::Error;
+use crate::layer::Elastic;
+use crate::tomlin::{Ctx, Field, Source};
+use crate::units::Dim;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// The version of the material file format this build reads.
+pub const SCHEMA_VERSION: i64 = 1;
+
+/// The bundled material files: (file name, contents).
+pub const BUILTIN: &[(&str, &str)] = &[
+    (
+        "aluminium-alloy.toml",
+        include_str!("../materials/aluminium-alloy.toml"),
+    ),
+    ("brass.toml", include_str!("../materials/brass.toml")),
+    (
+        "carbon-steel.toml",
+        include_str!("../materials/carbon-steel.toml"),
+    ),
+    ("copper.toml", include_str!("../materials/copper.toml")),
+    (
+        "cyanoacrylate.toml",
+        include_str!("../materials/cyanoacrylate.toml"),
+    ),
+    ("epdm.toml", include_str!("../materials/epdm.toml")),
+    ("epoxy.toml", include_str!("../materials/epoxy.toml")),
+    ("fkm.toml", include_str!("../materials/fkm.toml")),
+    ("glass.toml", include_str!("../materials/glass.toml")),
+    (
+        "hardened-steel.toml",
+        include_str!("../materials/hardened-steel.toml"),
+    ),
+    (
+        "natural-rubber.toml",
+        include_str!("../materials/natural-rubber.toml"),
+    ),
+    ("nbr.toml", include_str!("../materials/nbr.toml")),
+    (
+        "paper-rubber.toml",
+        include_str!("../materials/paper-rubber.toml"),
+    ),
+    (
+        "paper-steel.toml",
+        include_str!("../materials/paper-steel.toml"),
+    ),
+    (
+        "polyurethane.toml",
+        include_str!("../materials/polyurethane.toml"),
+    ),
+    ("ptfe.toml", include_str!("../materials/ptfe.toml")),
+    (
+        "rubber-vulcanised-to-brass.toml",
+        include_str!("../materials/rubber-vulcanised-to-brass.toml"),
+    ),
+    (
+        "silicone-pdms.toml",
+        include_str!("../materials/silicone-pdms.toml"),
+    ),
+    (
+        "silicone-with-primer.toml",
+        include_str!("../materials/silicone-with-primer.toml"),
+    ),
+    (
+        "stainless-steel.toml",
+        include_str!("../materials/stainless-steel.toml"),
+    ),
+];
+
+/// What a library entry is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Kind {
+    Film,
+    Substrate,
+    Bond,
+}
+
+impl std::fmt::Display for Kind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Kind::Film => "film",
+            Kind::Substrate => "substrate",
+            Kind::Bond => "bond",
+        })
+    }
+}
+
+/// An elastic material (film or substrate).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Material {
+    pub name: String,
+    pub kind: Kind,
+    pub elastic: Elastic,
+    /// Yield strength in Pa (substrates; `None` when not given).
+    pub yield_strength: Option<f64>,
+    pub source: String,
+}
+
+/// A bond (adhesive or vulcanised joint) between film and substrate.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Bond {
+    pub name: String,
+    /// Shear strength in Pa.
+    pub shear_strength: f64,
+    pub source: String,
+}
+
+/// One parsed library file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Entry {
+    Material(Material),
+    Bond(Bond),
+}
+
+impl Entry {
+    pub fn name(&self) -> &str {
+        match self {
+            Entry::Material(m) => &m.name,
+            Entry::Bond(b) => &b.name,
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawEntry {
+    schema_version: Field,
+    name: Field,
+    kind: Field,
+    youngs_modulus: Option<Field>,
+    poisson_ratio: Option<Field>,
+    yield_strength: Option<Field>,
+    shear_strength: Option<Field>,
+    source: Field,
+}
+
+/// Parse one material file (`path` is used in error messages only).
+pub fn parse_entry(text: &str, path: &Path) -> Result<Entry, Error> {
+    let src = Source { path, text };
+    let raw: RawEntry = src.parse()?;
+    let ctx = Ctx { file: Some(&src) };
+    let version = ctx.quantity(&raw.schema_version, "schema_version", Dim::Dimensionless)?;
+    if version != SCHEMA_VERSION as f64 {
+        return Err(ctx.error(
+            &raw.schema_version.origin,
+            "schema_version",
+            format!("{version} (this build reads schema_version = {SCHEMA_VERSION})"),
+        ));
+    }
+    let name = ctx.text(&raw.name, "name")?.trim().to_string();
+    if name.is_empty() {
+        return Err(ctx.error(&raw.name.origin, "name", "empty (expected a name)"));
+    }
+    let source = ctx.text(&raw.source, "source")?.trim().to_string();
+    if source.is_empty() {
+        return Err(ctx.error(
+            &raw.source.origin,
+            "source",
+            "empty (expected where the values come from)",
+        ));
+    }
+    let kind = match ctx.text(&raw.kind, "kind")? {
+        "film" => Kind::Film,
+        "substrate" => Kind::Substrate,
+        "bond" => Kind::Bond,
+        other => {
+            return Err(ctx.error(
+                &raw.kind.origin,
+                "kind",
+                format!("'{other}' (expected film, substrate or bond)"),
+            ));
+        }
+    };
+    let forbid = |f: &Option<Field>, key: &str, why: &str| match f {
+        Some(f) => Err(ctx.error(&f.origin, key, why)),
+        None => Ok(()),
+    };
+    let require = |f: &Option<Field>, key: &str| {
+        f.clone().ok_or_else(|| Error::Input {
+            path: path.to_path_buf(),
+            line: 1,
+            msg: format!("{key} is missing (a {kind} needs it)"),
+        })
+    };
+    if kind == Kind::Bond {
+        for (f, key) in [
+            (&raw.youngs_modulus, "youngs_modulus"),
+            (&raw.poisson_ratio, "poisson_ratio"),
+            (&raw.yield_strength, "yield_strength"),
+        ] {
+            forbid(
+                f,
+                key,
+                "not a property of a bond (expected shear_strength only)",
+            )?;
+        }
+        let f = require(&raw.shear_strength, "shear_strength")?;
+        let shear_strength = ctx.positive(&f, "shear_strength", Dim::Pressure)?;
+        return Ok(Entry::Bond(Bond {
+            name,
+            shear_strength,
+            source,
+        }));
+    }
+    forbid(
+        &raw.shear_strength,
+        "shear_strength",
+        "a bond property (expected kind = \"bond\")",
+    )?;
+    let fe = require(&raw.youngs_modulus, "youngs_modulus")?;
+    let fn_ = require(&raw.poisson_ratio, "poisson_ratio")?;
+    let e = ctx.positive(&fe, "youngs_modulus", Dim::Pressure)?;
+    let nu = ctx.quantity(&fn_, "poisson_ratio", Dim::Dimensionless)?;
+    let elastic =
+        Elastic::new(e, nu).map_err(|err| ctx.error(&fn_.origin, "poisson_ratio", err))?;
+    let yield_strength = match &raw.yield_strength {
+        Some(f) => Some(ctx.positive(f, "yield_strength", Dim::Pressure)?),
+        None => None,
+    };
+    Ok(Entry::Material(Material {
+        name,
+        kind,
+        elastic,
+        yield_strength,
+        source,
+    }))
+}
+
+/// The materials and bonds known to a run, by name.
+#[derive(Debug, Clone, Default)]
+pub struct Library {
+    materials: BTreeMap<String, Material>,
+    bonds: BTreeMap<String, Bond>,
+}
+
+/// Lookup key: lower case, with `_` and spaces read as `-`.
+fn key(name: &str) -> String {
+    name.trim()
+        .to_lowercase()
+        .chars()
+        .map(|c| if c == '_' || c == ' ' { '-' } else { c })
+        .collect()
+}
+
+impl Library {
+    /// The bundled library.
+    pub fn builtin() -> Result<Self, Error> {
+        let mut lib = Library::default();
+        for (file, text) in BUILTIN {
+            lib.insert(parse_entry(text, &PathBuf::from("materials").join(file))?);
+        }
+        Ok(lib)
+    }
+
+    /// The bundled library plus (overriding) every `*.toml` file in `dir`.
+    pub fn with_dir(dir: Option<&Path>) -> Result<Self, Error> {
+        let mut lib = Self::builtin()?;
+        if let Some(dir) = dir {
+            lib.add_dir(dir)?;
+        }
+        Ok(lib)
+    }
+
+    /// Add (or override) the entries of every `*.toml` file in `dir`.
+    pub fn add_dir(&mut self, dir: &Path) -> Result<(), Error> {
+        let io = |source| Error::Io {
+            path: dir.to_path_buf(),
+            source,
+        };
+        let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+            .map_err(io)?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+            .collect();
+        files.sort();
+        for path in files {
+            let text = std::fs::read_to_string(&path).map_err(|source| Error::Io {
+                path: path.clone(),
+                source,
+            })?;
+            self.insert(parse_entry(&text, &path)?);
+        }
+        Ok(())
+    }
+
+    /// Add an entry, replacing one of the same name (of either kind).
+    pub fn insert(&mut self, entry: Entry) {
+        let k = key(entry.name());
+        self.materials.remove(&k);
+        self.bonds.remove(&k);
+        match entry {
+            Entry::Material(m) => {
+                self.materials.insert(k, m);
+            }
+            Entry::Bond(b) => {
+                self.bonds.insert(k, b);
+            }
+        }
+    }
+
+    /// All elastic materials, by name.
+    pub fn materials(&self) -> impl Iterator<Item = &Material> {
+        self.materials.values()
+    }
+
+    /// All bonds, by name.
+    pub fn bonds(&self) -> impl Iterator<Item = &Bond> {
+        self.bonds.values()
+    }
+
+    /// An elastic material by name; the error names it and lists close names.
+    pub fn material(&self, name: &str) -> Result<&Material, String> {
+        self.materials.get(&key(name)).ok_or_else(|| {
+            let what = if self.bonds.contains_key(&key(name)) {
+                "is a bond, not an elastic material"
+            } else {
+                "is not in the materials library"
+            };
+            unknown(name, what, self.materials.keys())
+        })
+    }
+
+    /// A bond by name; the error names it and lists close names.
+    pub fn bond(&self, name: &str) -> Result<&Bond, String> {
+        self.bonds.get(&key(name)).ok_or_else(|| {
+            let what = if self.materials.contains_key(&key(name)) {
+                "is an elastic material, not a bond"
+            } else {
+                "is not in the materials library"
+            };
+            unknown(name, what, self.bonds.keys())
+        })
+    }
+}
+
+/// "unknown 'x' ...; close names: a, b" (or all names when none is close).
+fn unknown<'a>(name: &str, what: &str, names: impl Iterator<Item = &'a String>) -> String {
+    let k = key(name);
+    let all: Vec<&String> = names.collect();
+    let mut close: Vec<(usize, &String)> = all
+        .iter()
+        .map(|n| (edit_distance(&k, n), *n))
+        .filter(|(d, n)| *d <= 2.max(k.len() / 3) || n.contains(&k) || k.contains(n.as_str()))
+        .collect();
+    close.sort();
+    let (label, list): (&str, Vec<&str>) = if close.is_empty() {
+        ("known", all.iter().map(|s| s.as_str()).collect())
+    } else {
+        (
+            "close names",
+            close.iter().take(5).map(|(_, n)| n.as_str()).collect(),
+        )
+    };
+    format!("'{name}' {what} ({label}: {})", list.join(", "))
+}
+
+/// Levenshtein distance (characters).
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let cur = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != cb)).min(row[j] + 1).min(cur + 1);
+            prev = cur;
+        }
+    }
+    row[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_file_in_materials_is_bundled_and_named_after_its_file() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("materials");
+        let mut on_disk: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".toml"))
+            .collect();
+        on_disk.sort();
+        let mut bundled: Vec<String> = BUILTIN.iter().map(|(f, _)| f.to_string()).collect();
+        bundled.sort();
+        assert_eq!(on_disk, bundled, "materials/*.toml and BUILTIN differ");
+        for (file, text) in BUILTIN {
+            let on_disk = std::fs::read_to_string(dir.join(file)).unwrap();
+            assert_eq!(&on_disk, text);
+            let e = parse_entry(text, Path::new(file)).unwrap();
+            assert_eq!(format!("{}.toml", e.name()), *file);
+        }
+        let index = std::fs::read_to_string(dir.join("README.md")).unwrap();
+        for (file, _) in BUILTIN {
+            let name = file.trim_end_matches(".toml");
+            assert!(
+                index.contains(&format!("| `{name}` |")),
+                "{name} not in materials/README.md"
+            );
+        }
+    }
+
+    #[test]
+    fn the_library_has_the_required_entries_with_sane_values() {
+        let lib = Library::builtin().unwrap();
+        for m in [
+            "natural-rubber",
+            "epdm",
+            "nbr",
+            "fkm",
+            "silicone-pdms",
+            "polyurethane",
+            "ptfe",
+            "paper-rubber",
+        ] {
+            let m = lib.material(m).unwrap();
+            assert_eq!(m.kind, Kind::Film);
+            assert!(
+                m.elastic.youngs > 1e5 && m.elastic.youngs < 1e10,
+                "{}",
+                m.name
+            );
+        }
+        for m in [
+            "carbon-steel",
+            "hardened-steel",
+            "stainless-steel",
+            "aluminium-alloy",
+            "brass",
+            "copper",
+            "glass",
+            "paper-steel",
+        ] {
+            let m = lib.material(m).unwrap();
+            assert_eq!(m.kind, Kind::Substrate);
+            assert!(
+                m.elastic.youngs > 5e10 && m.elastic.youngs < 3e11,
+                "{}",
+                m.name
+            );
+            let y = m.yield_strength.unwrap();
+            assert!(y > 5e7 && y < 3e9, "{}", m.name);
+        }
+        for b in [
+            "epoxy",
+            "cyanoacrylate",
+            "rubber-vulcanised-to-brass",
+            "silicone-with-primer",
+        ] {
+            let b = lib.bond(b).unwrap();
+            assert!(
+                b.shear_strength > 1e6 && b.shear_strength < 5e7,
+                "{}",
+                b.name
+            );
+        }
+        // The paper's values exactly.
+        let r = lib.material("paper-rubber").unwrap().elastic;
+        assert_eq!((r.youngs, r.poisson), (1e6, 0.5));
+        let s = lib.material("paper-steel").unwrap().elastic;
+        assert_eq!((s.youngs, s.poisson), (1e11, 0.5));
+        assert_eq!(lib.bond("epoxy").unwrap().shear_strength, 1e7);
+    }
+
+    #[test]
+    fn lookups_are_forgiving_and_errors_list_close_names() {
+        let lib = Library::builtin().unwrap();
+        assert_eq!(
+            lib.material("Natural_Rubber").unwrap().name,
+            "natural-rubber"
+        );
+        let e = lib.material("natural-rubbr").unwrap_err();
+        assert!(
+            e.contains("'natural-rubbr'") && e.contains("natural-rubber"),
+            "{e}"
+        );
+        let e = lib.material("epoxy").unwrap_err();
+        assert!(e.contains("is a bond"), "{e}");
+        let e = lib.bond("zzzzzzzzzzzzzzzzzzz").unwrap_err();
+        assert!(e.contains("known: ") && e.contains("epoxy"), "{e}");
+    }
+
+    #[test]
+    fn edit_distance_is_levenshtein() {
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        assert_eq!(edit_distance("abc", "abc"), 0);
+    }
+
+    #[test]
+    fn bad_files_are_rejected_with_the_line() {
+        let p = Path::new("m.toml");
+        let ok = "schema_version = 1\nname = \"x\"\nkind = \"film\"\nyoungs_modulus = \"1 MPa\"\npoisson_ratio = 0.5\nsource = \"s\"\n";
+        assert!(parse_entry(ok, p).is_ok());
+        let cases = [
+            (ok.replace("1 MPa", "1 furlong"), 4, "unknown unit"),
+            (ok.replace("0.5", "0.7"), 5, "Poisson"),
+            (
+                ok.replace("schema_version = 1", "schema_version = 2"),
+                1,
+                "schema_version",
+            ),
+            (ok.replace("source", "sauce"), 6, "unknown field"),
+            (ok.replace("\"film\"", "\"liquid\""), 3, "kind"),
+            (
+                format!("{ok}shear_strength = \"1 MPa\"\n"),
+                7,
+                "shear_strength",
+            ),
+        ];
+        for (text, line, needle) in cases {
+            let e = parse_entry(&text, p).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("m.toml:{line}:")), "{e}");
+            assert!(e.contains(needle), "{e}");
+            assert!(!e.contains('\n'), "{e}");
+        }
+    }
+
+    #[test]
+    fn a_directory_overrides_bundled_entries() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(
+            dir.path().join("epoxy.toml"),
+            "schema_version = 1\nname = \"epoxy\"\nkind = \"bond\"\nshear_strength = \"20 MPa\"\nsource = \"my test\"\n",
+        )
+        .unwrap();
+        let lib = Library::with_dir(Some(dir.path())).unwrap();
+        assert_eq!(lib.bond("epoxy").unwrap().shear_strength, 2e7);
+        assert!(lib.material("paper-rubber").is_ok());
+    }
+}
