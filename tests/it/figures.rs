@@ -4,6 +4,11 @@
 use coatcheck::figures::{self, Figure, Series};
 use statrs::function::erf::erf;
 
+// The examples' CSV/SVG writer; `run` (their `main`) is not used here.
+#[allow(dead_code)]
+#[path = "../../examples/common/plot.rs"]
+mod plot;
+
 fn series<'a>(f: &'a Figure, label_start: &str) -> &'a Series {
     f.series
         .iter()
@@ -283,5 +288,64 @@ fn fig14_only_small_q() {
         if q * 10e-6 >= 10.0 {
             assert!(fs.y[i] < 1e-3 && gs.y[i].abs() < 1e-3, "q {q}");
         }
+    }
+}
+
+/// The examples' writer: the CSV holds every point in the axes' display units (d in µm, stress
+/// in MPa) under a header naming them; the SVG has the axis titles, tick labels and legend; only
+/// the two files are left in the output directory (the temporary files were renamed).
+#[test]
+fn figure_files() {
+    use plotters::style::{BLUE, GREEN, RED};
+    let fig = figures::fig07(5).unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    let [csv_path, svg_path] =
+        plot::write(&fig, &dir, &[RED, BLUE, GREEN], plot::Legend::UpperRight).unwrap();
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["fig07.csv", "fig07.svg"]);
+    let mut r = csv::Reader::from_path(&csv_path).unwrap();
+    assert_eq!(
+        r.headers().unwrap(),
+        vec![
+            "series",
+            "d [um]",
+            "rms stress [MPa]",
+            "rms stress [MPa] error"
+        ]
+    );
+    let rows: Vec<csv::StringRecord> = r.records().map(|r| r.unwrap()).collect();
+    assert_eq!(rows.len(), 15);
+    let num = |s: &str| s.parse::<f64>().unwrap();
+    for (row, (s, i)) in rows
+        .iter()
+        .zip(fig.series.iter().flat_map(|s| (0..5).map(move |i| (s, i))))
+    {
+        assert_eq!(&row[0], s.label);
+        assert!((num(&row[1]) * 1e-6 / s.x[i] - 1.0).abs() < 1e-15);
+        assert!((num(&row[2]) * 1e6 / s.y[i] - 1.0).abs() < 1e-15);
+        assert!((num(&row[3]) * 1e6 / s.err[i] - 1.0).abs() < 1e-15);
+    }
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    let texts: Vec<&str> = svg
+        .split("</text>")
+        .filter_map(|t| t.rsplit_once('>').map(|(_, text)| text.trim()))
+        .collect();
+    for text in [
+        "d [um]",
+        "rms stress [MPa]",
+        "sigma top (z = 0)",
+        "tau interface (z = d)",
+        "1e-1",
+        "1e3",
+    ] {
+        assert!(
+            texts.contains(&text),
+            "{text} missing from the SVG: {texts:?}"
+        );
     }
 }
