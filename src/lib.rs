@@ -26,5 +26,6 @@ pub mod scene;
 pub mod tomlin;
 pub mod topography;
 pub mod units;
+pub mod verify;
 
 pub use error::Error;

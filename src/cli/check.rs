@@ -1,11 +1,13 @@
 //! `coatcheck check`: judge one coating design (scene file and/or flags).
 
 use coatcheck::Error;
+use coatcheck::bem::BemSettings;
 use coatcheck::check::{Checker, log_space};
 use coatcheck::material::Library;
 use coatcheck::report::{self, Format};
 use coatcheck::scene::Scene;
 use coatcheck::units::{Dim, parse_quantity};
+use coatcheck::verify::verify;
 use std::path::PathBuf;
 
 const AFTER_HELP: &str = "\
@@ -123,6 +125,11 @@ pub struct CheckArgs {
     /// one check; exit code 0 unless the input is bad.
     #[arg(long, value_name = "FROM:TO:N")]
     pub sweep_thickness: Option<String>,
+    /// Also solve the contact exactly on the scene's height map (roughness.profile) with
+    /// boundary elements and judge the checks on the solved fields; the design then passes only
+    /// if both pass.
+    #[arg(long, conflicts_with = "sweep_thickness")]
+    pub verify: bool,
 }
 
 impl CheckArgs {
@@ -221,12 +228,52 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
             msg: "film.thickness is missing; give the film thickness (thickness = \"10 um\" under [film], or --thickness 10um)".into(),
         })?;
         let outcome = checker.run(thickness)?;
-        let text = match args.format {
-            Format::Table => report::human(&scene, &outcome),
-            Format::Json => format!("{:#}\n", report::json(&scene, &outcome)),
-            Format::Csv => report::csv(&scene, &outcome)?,
+        let exact = if args.verify {
+            let (map, surface) = super::verify::scene_map(&scene)?;
+            let v = verify(
+                &surface,
+                checker.design(),
+                thickness,
+                &BemSettings::default(),
+            )?;
+            Some((map, v))
+        } else {
+            None
         };
-        (text, if outcome.pass { 0 } else { 1 })
+        let pass = outcome.pass && exact.as_ref().is_none_or(|(_, v)| v.pass);
+        let ev = &outcome.evaluation;
+        let text = match args.format {
+            Format::Table => {
+                let mut t = report::human(&scene, &outcome);
+                if let Some((map, v)) = &exact {
+                    t += &format!("\n{}", super::verify::check_table(map, ev, v));
+                }
+                t
+            }
+            Format::Json => {
+                let mut j = report::json(&scene, &outcome);
+                if let (Some((map, v)), Some(o)) = (&exact, j.as_object_mut()) {
+                    o.insert("verify".into(), super::verify::check_json(map, ev, v));
+                    o.insert(
+                        "verdict_with_verify".into(),
+                        (if pass { "pass" } else { "fail" }).into(),
+                    );
+                }
+                format!("{j:#}\n")
+            }
+            Format::Csv => {
+                let mut c = report::csv(&scene, &outcome)?;
+                if let Some((_, v)) = &exact {
+                    c += &super::verify::check_csv(ev, v);
+                    c += &format!(
+                        "verdict_with_verify,{},,\n",
+                        if pass { "pass" } else { "fail" }
+                    );
+                }
+                c
+            }
+        };
+        (text, if pass { 0 } else { 1 })
     };
     match &args.output {
         Some(path) => report::write_atomic(path, &text)?,

@@ -10,3 +10,5 @@ mod layer;
 mod psd_convert;
 mod psd_read;
 mod topography;
+mod validity;
+mod verify_check;
