@@ -71,9 +71,14 @@ pub fn write(
 fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Box<dyn Error>> {
     let name = path.file_name().ok_or("output path has no file name")?;
     let tmp = path.with_file_name(format!(".{}.tmp", name.to_string_lossy()));
-    std::fs::write(&tmp, bytes).map_err(|e| format!("{}: {e}", tmp.display()))?;
-    std::fs::rename(&tmp, path).map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(())
+    let written = std::fs::write(&tmp, bytes)
+        .map_err(|e| format!("{}: {e}", tmp.display()))
+        .and_then(|()| std::fs::rename(&tmp, path).map_err(|e| format!("{}: {e}", path.display())));
+    if written.is_err() {
+        // Best effort: a failed write must not leave a partial temporary file behind.
+        let _ = std::fs::remove_file(&tmp);
+    }
+    Ok(written?)
 }
 
 /// CSV in display units: `series,<x title>,<y title>,<y title> error`.
