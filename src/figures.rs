@@ -18,7 +18,7 @@
 use crate::Error;
 use crate::contact::{Engine, NormalStress, Request, tau_pdf};
 use crate::layer::{Bilayer, Elastic, Stack};
-use crate::prec::{Estimate, Settings, Termination};
+use crate::prec::{Estimate, KERNEL_RTOL, Settings, Termination};
 use crate::psd::Spectrum;
 use crate::units::{self, Dim};
 
@@ -34,9 +34,6 @@ pub const D_FIG4: f64 = 50e-6;
 pub const Q1: f64 = 1e8;
 /// ν of a real rubber with bulk modulus 2 GPa (Fig. 5).
 pub const NU_COMPRESSIBLE: f64 = 0.49985;
-
-/// Relative accuracy of the kernels f, g against a 100-digit solution (README, "Numerical accuracy").
-const KERNEL_RTOL: f64 = 3e-14;
 
 /// One curve: x, y and the absolute error estimate of each y.
 #[derive(Debug, Clone, PartialEq)]
