@@ -142,6 +142,10 @@ fn simpson(x: &[f64], y: &[f64]) -> f64 {
 /// the contact area is p0/(A/A0) (force balance; A/A0 ≈ 0.0927, notes.md); the interface normal
 /// stress has a similar form with a smaller width; the shear stress is Gaussian centred at 0 with
 /// τ_rms ≈ 0.133 MPa (notes.md), so P(0) = √(2/π)/τ_rms and ⟨τ²⟩ = τ_rms².
+/// Also Fig. 6 against Fig. 7 by two independent routes: the top distribution's variance over the
+/// whole nominal area (σ = 0 out of contact), A/A0·⟨σ²⟩_contact − p0², equals σ_rms(top)² of
+/// eq. (B10). (Persson's P solves ∂P/∂G = ∂²P/∂σ² with P(0) = 0, so d⟨σ²⟩/dG = 2 P(q), and
+/// (B10) at z = 0 is 2∫P dG.)
 #[test]
 fn fig06_distributions() {
     let f = figures::fig06(401).unwrap();
@@ -168,10 +172,20 @@ fn fig06_distributions() {
         .evaluate(
             &figures::rubber_on_steel(0.5, figures::D_FIG6).unwrap(),
             figures::P0,
-            Default::default(),
+            coatcheck::contact::Request {
+                sigma_top: true,
+                ..Default::default()
+            },
         )
         .unwrap();
     let area = c.area_fraction.value;
+    let sigma_top = c.sigma_rms_top.unwrap().value;
+    let full_area_var = area * moment(top, 2) - figures::P0.powi(2);
+    eprintln!(
+        "fig06 full-area rms of the top distribution {:.7e}, sigma_rms top (B10) {sigma_top:.7e}",
+        full_area_var.sqrt()
+    );
+    assert!((full_area_var / sigma_top.powi(2) - 1.0).abs() < 1e-5);
     assert!((area - 0.0927).abs() < 5e-4, "A/A0 {area}");
     let mean_top = moment(top, 1);
     assert!(
