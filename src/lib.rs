@@ -15,6 +15,7 @@ pub mod bem;
 pub mod check;
 pub mod contact;
 pub mod error;
+pub mod figures;
 pub mod layer;
 pub mod material;
 pub mod prec;

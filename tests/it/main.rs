@@ -6,6 +6,8 @@ mod cli_psd_format;
 mod cli_response;
 mod common;
 mod contact;
+mod extreme;
+mod figures;
 mod layer;
 mod psd_convert;
 mod psd_read;
