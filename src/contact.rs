@@ -113,11 +113,31 @@ struct Grid {
 
 impl Grid {
     fn new(spectrum: &Spectrum, h_max: f64) -> Grid {
-        let mut knots = spectrum.knots();
+        // Knots within rounding of their successor (e.g. a Gaussian band's last stepped knot
+        // landing 1 ulp below the support's end) would make a panel of width ~1e-16 whose error
+        // estimate is 0·∞ = NaN; keep the later one.
+        let all = spectrum.knots();
+        let mut knots: Vec<f64> = all
+            .windows(2)
+            .filter(|w| w[1] > w[0] * (1.0 + 1e-12))
+            .map(|w| w[0])
+            .collect();
+        knots.push(*all.last().expect("a spectrum has knots"));
         let q_l = knots[0];
-        let q_oct = 2.0 * q_l;
-        if q_oct < *knots.last().unwrap() && !knots.contains(&q_oct) {
-            let at = knots.partition_point(|&k| k < q_oct);
+        let mut q_oct = 2.0 * q_l;
+        // A spectrum knot within rounding of 2 q_L (e.g. a Gaussian band whose knot grid starts
+        // at q_L + 0.5 Q with q_L = 0.5 Q) is taken as the octave's end: inserting 2 q_L beside
+        // it would make a panel of width ~1e-16 whose error estimate is 0·∞ = NaN.
+        let at = knots.partition_point(|&k| k < q_oct);
+        let near = |k: f64| (k / q_oct - 1.0).abs() <= 1e-12;
+        if let Some(&k) = [at.checked_sub(1), Some(at)]
+            .into_iter()
+            .flatten()
+            .filter_map(|i| knots.get(i))
+            .find(|&&k| near(k))
+        {
+            q_oct = k;
+        } else if q_oct < *knots.last().unwrap() {
             knots.insert(at, q_oct);
         }
         let mut g = Grid {
@@ -639,7 +659,8 @@ fn mark_not_reached(c: &mut Contact, rtol: f64) {
     .into_iter()
     .flatten()
     {
-        if e.err > rtol * e.value.abs() {
+        // A NaN estimate is never reported as converged.
+        if e.err.is_nan() || e.err > rtol * e.value.abs() {
             e.status = Termination::ToleranceNotReached;
         }
     }

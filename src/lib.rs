@@ -16,6 +16,7 @@ pub mod bem;
 pub mod check;
 pub mod contact;
 pub mod error;
+pub mod figures;
 pub mod junit;
 pub mod layer;
 pub mod material;
@@ -28,5 +29,6 @@ pub mod scene;
 pub mod tomlin;
 pub mod topography;
 pub mod units;
+pub mod verify;
 
 pub use error::Error;

@@ -14,6 +14,17 @@ pub const EPS: f64 = f64::EPSILON;
 /// Default relative tolerance of the contact integrals (area, rms stresses).
 pub const DEFAULT_RTOL: f64 = 1e-8;
 
+/// Relative tolerance of the engine inside the minimum-thickness search: d_min is wanted to
+/// 0.2 % in d, and a utilisation error of 1e-6 moves it by 1e-6/|d ln u/d ln d| (included in
+/// its error estimate), while thin films on noisy spectra would need a refined grid at 1e-8.
+pub const SEARCH_RTOL: f64 = 1e-6;
+
+/// Relative error bound of the layer kernels S, f, g (`layer`): the worst measured against a
+/// 100-digit solution over the reference grid is 1.1e-13 (S) and 2.9e-14 (f, g); the test
+/// `kernels_match_high_precision_reference` asserts this bound, and outputs quote it as the
+/// kernels' error estimate.
+pub const KERNEL_RTOL: f64 = 2e-13;
+
 /// Default exceedance probability that defines a "peak" value (fraction of the interface).
 pub const DEFAULT_EPSILON: f64 = 1e-6;
 

@@ -237,6 +237,11 @@ pub fn human(scene: &Scene, outcome: &Outcome) -> String {
         ev.tau_peak,
         &mpa_unit,
     );
+    t.add_row(vec![
+        "share of G(q1) from the lowest octave".into(),
+        sig(c.low_octave_share, 3),
+        String::new(),
+    ]);
     if let Some(p) = ev.bond_exceedance {
         t.add_row(vec![
             "P(|tau| > bond strength)".into(),

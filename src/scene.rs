@@ -44,7 +44,7 @@ use crate::layer::{Bilayer, Elastic};
 use crate::material::{Bond, Kind, Library, Material};
 use crate::prec::Settings;
 use crate::psd::Spectrum;
-use crate::psd::read::{ReadOptions, read_spectrum};
+use crate::psd::read::{Column, PsdKind, ReadOptions, read_spectrum};
 use crate::tomlin::{Ctx, Field, Origin, Raw, Source};
 use crate::units::Dim;
 use serde::{Deserialize, Serialize};
@@ -80,6 +80,11 @@ pub struct RawRoughness {
     pub rms_height: Option<Field>,
     pub q_min: Option<Field>,
     pub q_max: Option<Field>,
+    pub q_col: Option<Field>,
+    pub c_col: Option<Field>,
+    pub q_unit: Option<Field>,
+    pub c_unit: Option<Field>,
+    pub psd_kind: Option<Field>,
 }
 
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -141,6 +146,11 @@ pub const FLAG_KEYS: &[(&str, &str)] = &[
     ("roughness.rms_height", "--rms-height"),
     ("roughness.q_min", "--q-min"),
     ("roughness.q_max", "--q-max"),
+    ("roughness.q_col", "--q-col"),
+    ("roughness.c_col", "--c-col"),
+    ("roughness.q_unit", "--q-unit"),
+    ("roughness.c_unit", "--c-unit"),
+    ("roughness.psd_kind", "--psd-kind"),
     ("film.material", "--film"),
     ("film.youngs_modulus", "--film-youngs-modulus"),
     ("film.poisson_ratio", "--film-poisson-ratio"),
@@ -162,7 +172,16 @@ pub const FLAG_KEYS: &[(&str, &str)] = &[
 /// of the others; keys of two alternatives together are a contradiction.
 const EXCLUSIVE: &[&[&[&str]]] = &[
     &[
-        &["roughness.psd", "roughness.q_min", "roughness.q_max"],
+        &[
+            "roughness.psd",
+            "roughness.q_min",
+            "roughness.q_max",
+            "roughness.q_col",
+            "roughness.c_col",
+            "roughness.q_unit",
+            "roughness.c_unit",
+            "roughness.psd_kind",
+        ],
         &["roughness.profile"],
         &[
             "roughness.model",
@@ -201,6 +220,11 @@ macro_rules! all_keys {
             ("roughness.rms_height", $($r)+ $s.roughness.rms_height),
             ("roughness.q_min", $($r)+ $s.roughness.q_min),
             ("roughness.q_max", $($r)+ $s.roughness.q_max),
+            ("roughness.q_col", $($r)+ $s.roughness.q_col),
+            ("roughness.c_col", $($r)+ $s.roughness.c_col),
+            ("roughness.q_unit", $($r)+ $s.roughness.q_unit),
+            ("roughness.c_unit", $($r)+ $s.roughness.c_unit),
+            ("roughness.psd_kind", $($r)+ $s.roughness.psd_kind),
             ("film.material", $($r)+ $s.film.material),
             ("film.youngs_modulus", $($r)+ $s.film.youngs_modulus),
             ("film.poisson_ratio", $($r)+ $s.film.poisson_ratio),
@@ -222,7 +246,7 @@ macro_rules! all_keys {
 
 impl RawScene {
     /// Every key with its value.
-    pub fn fields(&self) -> [(&'static str, &Option<Field>); 27] {
+    pub fn fields(&self) -> [(&'static str, &Option<Field>); 32] {
         all_keys!(self, &)
     }
 
@@ -299,6 +323,36 @@ pub enum Scale {
     RmsHeight(f64),
 }
 
+/// How to read a measured PSD file (keys roughness.q_col, c_col, q_unit, c_unit, psd_kind);
+/// unset fields fall back to the file's header (`crate::psd::read`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct PsdFormat {
+    /// Column of q: a 1-based number or a header name.
+    pub q_col: Option<String>,
+    /// Column of C.
+    pub c_col: Option<String>,
+    /// Unit of q, e.g. `1/um`.
+    pub q_unit: Option<String>,
+    /// Unit of C, e.g. `um^4` (2D) or `nm^3` (1D).
+    pub c_unit: Option<String>,
+    /// A 2D PSD (m^4) or a 1D PSD from line scans (m^3), converted by the inverse Abel transform.
+    pub kind: Option<PsdKind>,
+}
+
+impl PsdFormat {
+    fn options(&self) -> Result<ReadOptions, Error> {
+        let col = |c: &Option<String>| c.as_deref().map(str::parse::<Column>).transpose();
+        Ok(ReadOptions {
+            q_col: col(&self.q_col)?,
+            c_col: col(&self.c_col)?,
+            q_unit: self.q_unit.clone(),
+            c_unit: self.c_unit.clone(),
+            kind: self.kind,
+            ..ReadOptions::default()
+        })
+    }
+}
+
 /// The roughness of a scene.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Roughness {
@@ -311,6 +365,7 @@ pub struct Roughness {
     pub scale: Option<Scale>,
     pub q_min: Option<f64>,
     pub q_max: Option<f64>,
+    pub psd_format: PsdFormat,
     /// The scene file and line that named the file(s), for messages about unreadable files.
     #[serde(skip)]
     pub declared_at: Option<(PathBuf, usize)>,
@@ -380,7 +435,7 @@ impl Roughness {
     fn spectrum_unlocated(&self) -> Result<(Spectrum, Vec<String>), Error> {
         let (base, warnings) = match &self.source {
             RoughnessSource::Measured { path } => {
-                let (t, w) = read_spectrum(path, &ReadOptions::default())?;
+                let (t, w) = read_spectrum(path, &self.psd_format.options()?)?;
                 let t = if self.q_min.is_some() || self.q_max.is_some() {
                     t.restricted(self.q_min, self.q_max)?
                 } else {
@@ -853,12 +908,47 @@ fn resolve_roughness(r: &RawRoughness, ctx: Ctx<'_>) -> Result<Roughness, Error>
             "give a PSD file (--psd surface.csv), heights (--profile map.csv) or a model (model = \"self-affine\" ...)",
         ));
     };
+    let text = |f: &Option<Field>, key: &str| -> Result<Option<String>, Error> {
+        f.as_ref()
+            .map(|f| ctx.text(f, key).map(str::to_string))
+            .transpose()
+    };
+    let column = |f: &Option<Field>, key: &str| -> Result<Option<String>, Error> {
+        let c = text(f, key)?;
+        if let (Some(c), Some(f)) = (&c, f) {
+            c.parse::<Column>()
+                .map_err(|e| ctx.error(&f.origin, key, e.to_string()))?;
+        }
+        Ok(c)
+    };
+    let kind = match (&r.psd_kind, text(&r.psd_kind, "roughness.psd_kind")?) {
+        (Some(f), Some(k)) => Some(match k.to_ascii_lowercase().as_str() {
+            "2d" => PsdKind::TwoD,
+            "1d" => PsdKind::OneD,
+            _ => {
+                return Err(ctx.error(
+                    &f.origin,
+                    "roughness.psd_kind",
+                    format!("'{k}' (expected 2d or 1d)"),
+                ));
+            }
+        }),
+        _ => None,
+    };
+    let psd_format = PsdFormat {
+        q_col: column(&r.q_col, "roughness.q_col")?,
+        c_col: column(&r.c_col, "roughness.c_col")?,
+        q_unit: text(&r.q_unit, "roughness.q_unit")?,
+        c_unit: text(&r.c_unit, "roughness.c_unit")?,
+        kind,
+    };
     Ok(Roughness {
         source,
         more_files,
         scale,
         q_min,
         q_max,
+        psd_format,
         declared_at,
     })
 }

@@ -2,11 +2,13 @@
 
 use coatcheck::Error;
 use coatcheck::batch::{self, Judged, SceneRun};
+use coatcheck::bem::BemSettings;
 use coatcheck::check::{Checker, Outcome, log_space};
 use coatcheck::material::Library;
 use coatcheck::report::{self, Format};
 use coatcheck::scene::Scene;
 use coatcheck::units::{Dim, parse_quantity};
+use coatcheck::verify::verify;
 use std::path::PathBuf;
 
 const AFTER_HELP: &str = "\
@@ -77,6 +79,22 @@ pub struct CheckArgs {
     /// Use measured data only below this wavenumber.
     #[arg(long, allow_hyphen_values = true)]
     pub q_max: Option<String>,
+    /// PSD file: column of q (1-based number or header name; default: detected from the header).
+    #[arg(long)]
+    pub q_col: Option<String>,
+    /// PSD file: column of C.
+    #[arg(long)]
+    pub c_col: Option<String>,
+    /// PSD file: unit of q (e.g. 1/um), overriding the header's.
+    #[arg(long)]
+    pub q_unit: Option<String>,
+    /// PSD file: unit of C (e.g. um^4 for a 2D PSD, nm^3 for a 1D PSD), overriding the header's.
+    #[arg(long)]
+    pub c_unit: Option<String>,
+    /// PSD file: 2d (C in m^4) or 1d (C1D in m^3 from line scans, converted exactly by the
+    /// inverse Abel transform); default from the unit of C, else 2d.
+    #[arg(long)]
+    pub psd_kind: Option<String>,
     /// Film material (name from `coatcheck materials`).
     #[arg(long)]
     pub film: Option<String>,
@@ -135,6 +153,11 @@ pub struct CheckArgs {
     /// one check; exit code 0 unless the input is bad.
     #[arg(long, value_name = "FROM:TO:N")]
     pub sweep_thickness: Option<String>,
+    /// Also solve the contact exactly on the scene's height map (roughness.profile) with
+    /// boundary elements and judge the checks on the solved fields; the design then passes only
+    /// if both pass.
+    #[arg(long, conflicts_with = "sweep_thickness")]
+    pub verify: bool,
     /// Also write a JUnit XML report (a test case per scene and check), atomically.
     #[arg(long, value_name = "FILE")]
     pub junit: Option<PathBuf>,
@@ -146,7 +169,7 @@ pub struct CheckArgs {
 
 impl CheckArgs {
     fn overrides(&self) -> Vec<(&'static str, String)> {
-        let all: [(&'static str, &Option<String>); 27] = [
+        let all: [(&'static str, &Option<String>); 32] = [
             ("roughness.psd", &self.psd),
             ("roughness.profile", &self.profile),
             ("roughness.model", &self.model),
@@ -159,6 +182,11 @@ impl CheckArgs {
             ("roughness.rms_height", &self.rms_height),
             ("roughness.q_min", &self.q_min),
             ("roughness.q_max", &self.q_max),
+            ("roughness.q_col", &self.q_col),
+            ("roughness.c_col", &self.c_col),
+            ("roughness.q_unit", &self.q_unit),
+            ("roughness.c_unit", &self.c_unit),
+            ("roughness.psd_kind", &self.psd_kind),
             ("film.material", &self.film),
             ("film.youngs_modulus", &self.film_youngs_modulus),
             ("film.poisson_ratio", &self.film_poisson_ratio),
@@ -256,12 +284,52 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
         })?;
         let outcome = checker.run(thickness)?;
         write_single_extras(&args, &scene, &outcome)?;
-        let text = match args.format {
-            Format::Table => report::human(&scene, &outcome),
-            Format::Json => format!("{:#}\n", report::json(&scene, &outcome)),
-            Format::Csv => report::csv(&scene, &outcome)?,
+        let exact = if args.verify {
+            let (map, surface) = super::verify::scene_map(&scene)?;
+            let v = verify(
+                &surface,
+                checker.design(),
+                thickness,
+                &BemSettings::default(),
+            )?;
+            Some((map, v))
+        } else {
+            None
         };
-        (text, if outcome.pass { 0 } else { 1 })
+        let pass = outcome.pass && exact.as_ref().is_none_or(|(_, v)| v.pass);
+        let ev = &outcome.evaluation;
+        let text = match args.format {
+            Format::Table => {
+                let mut t = report::human(&scene, &outcome);
+                if let Some((map, v)) = &exact {
+                    t += &format!("\n{}", super::verify::check_table(map, ev, v));
+                }
+                t
+            }
+            Format::Json => {
+                let mut j = report::json(&scene, &outcome);
+                if let (Some((map, v)), Some(o)) = (&exact, j.as_object_mut()) {
+                    o.insert("verify".into(), super::verify::check_json(map, ev, v));
+                    o.insert(
+                        "verdict_with_verify".into(),
+                        (if pass { "pass" } else { "fail" }).into(),
+                    );
+                }
+                format!("{j:#}\n")
+            }
+            Format::Csv => {
+                let mut c = report::csv(&scene, &outcome)?;
+                if let Some((_, v)) = &exact {
+                    c += &super::verify::check_csv(ev, v);
+                    c += &format!(
+                        "verdict_with_verify,{},,\n",
+                        if pass { "pass" } else { "fail" }
+                    );
+                }
+                c
+            }
+        };
+        (text, if pass { 0 } else { 1 })
     };
     match &args.output {
         Some(path) => report::write_atomic(path, &text)?,
@@ -313,6 +381,13 @@ fn write_batch_extras(args: &CheckArgs, runs: &[SceneRun]) -> Result<(), Error> 
 /// One scene that lists several roughness files: the detailed report of the worst file, after
 /// a table of every file's verdict.
 fn run_files(args: &CheckArgs, scene: &Scene, sweep: bool) -> Result<i32, Error> {
+    if args.verify {
+        return Err(Error::Value {
+            origin: "--verify".into(),
+            msg: "runs on one height map; this scene lists several (give one with --profile)"
+                .into(),
+        });
+    }
     if sweep {
         return Err(Error::Value {
             origin: "--sweep-thickness".into(),
@@ -363,11 +438,16 @@ fn run_files(args: &CheckArgs, scene: &Scene, sweep: bool) -> Result<i32, Error>
 /// Several scenes or a directory: judged in parallel, one summary (failures first), exit code
 /// 0 all pass, 1 any fails, 2 any could not be evaluated.
 fn run_batch(args: &CheckArgs) -> Result<i32, Error> {
-    if args.sweep_thickness.is_some() {
-        return Err(Error::Value {
-            origin: "--sweep-thickness".into(),
-            msg: "a sweep runs on one scene; give one scene file".into(),
-        });
+    for (given, flag) in [
+        (args.sweep_thickness.is_some(), "--sweep-thickness"),
+        (args.verify, "--verify"),
+    ] {
+        if given {
+            return Err(Error::Value {
+                origin: flag.into(),
+                msg: "runs on one scene; give one scene file".into(),
+            });
+        }
     }
     let library = Library::with_dir(args.materials.as_deref())?;
     let inputs: Vec<PathBuf> = args

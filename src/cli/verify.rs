@@ -11,11 +11,12 @@ use coatcheck::Error;
 use coatcheck::bem::{self, BemSettings, BemSolution, FieldStats, InterfaceFields, Surface};
 use coatcheck::contact::{Contact, Engine, Request, tau_exceedance, tau_peak};
 use coatcheck::layer::{Bilayer, Elastic, Stack};
-use coatcheck::prec::{Settings, Termination};
+use coatcheck::prec::{Estimate, Settings, Termination};
 use coatcheck::psd::Spectrum;
 use coatcheck::topography::io::{MapOptions, read_height_map, write_atomic};
 use coatcheck::topography::spectrum::{PsdOptions, map_psd};
 use coatcheck::units::{Dim, parse_quantity};
+use coatcheck::verify::Verification;
 use comfy_table::Table;
 use serde_json::{Value, json};
 use std::io::Write;
@@ -73,6 +74,9 @@ pub struct VerifyArgs {
     /// Solver iteration limit.
     #[arg(long, default_value_t = BemSettings::default().max_iter)]
     pub max_iter: usize,
+    /// Relative tolerance of Persson's contact integrals (default 1e-8).
+    #[arg(long)]
+    pub rtol: Option<String>,
 }
 
 fn quantity(flag: &'static str, s: &str, dim: Dim, expected: &'static str) -> Result<f64, Error> {
@@ -93,12 +97,17 @@ fn material(flag: &'static str, s: &str) -> Result<Elastic, Error> {
 struct Row {
     name: String,
     unit: &'static str,
-    persson: Option<f64>,
+    persson: Option<Estimate>,
     exact: f64,
 }
 
 impl Row {
-    fn new(name: impl Into<String>, unit: &'static str, persson: Option<f64>, exact: f64) -> Self {
+    fn new(
+        name: impl Into<String>,
+        unit: &'static str,
+        persson: Option<Estimate>,
+        exact: f64,
+    ) -> Self {
         Self {
             name: name.into(),
             unit,
@@ -108,7 +117,9 @@ impl Row {
     }
 
     fn ratio(&self) -> Option<f64> {
-        self.persson.filter(|p| *p != 0.0).map(|p| self.exact / p)
+        self.persson
+            .filter(|p| p.value != 0.0)
+            .map(|p| self.exact / p.value)
     }
 }
 
@@ -128,6 +139,7 @@ fn persson(
     map: &coatcheck::topography::HeightMap,
     stack: &Stack,
     p0: f64,
+    settings: Settings,
 ) -> Result<Contact, Error> {
     let psd = map_psd(
         map,
@@ -136,7 +148,7 @@ fn persson(
             ..PsdOptions::default()
         },
     )?;
-    let engine = Engine::new(&Spectrum::Tabulated(psd.c2d), Settings::default());
+    let engine = Engine::new(&Spectrum::Tabulated(psd.c2d), settings);
     engine.evaluate(stack, p0, Request::all())
 }
 
@@ -190,7 +202,27 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
     let sol = bem::solve(&surface, &stack, p0, &settings)?;
     let fields = bem::interface_fields(&sol, &stack)?;
     let seconds = started.elapsed().as_secs_f64();
-    let theory = persson(&map, &stack, p0)?;
+    let rtol = a
+        .rtol
+        .as_deref()
+        .map(|s| {
+            quantity(
+                "--rtol",
+                s,
+                Dim::Dimensionless,
+                "a relative tolerance such as 1e-8",
+            )
+            .and_then(|r| {
+                if r > 0.0 && r < 1.0 {
+                    Ok(r)
+                } else {
+                    Err(Error::invalid("--rtol", s, "0 < rtol < 1"))
+                }
+            })
+        })
+        .transpose()?
+        .unwrap_or(coatcheck::prec::DEFAULT_RTOL);
+    let theory = persson(&map, &stack, p0, Settings { rtol })?;
     let converged = sol.convergence.status == Termination::Converged;
     if converged && let Some(path) = &a.fields {
         write_fields(path, &surface, &sol, &fields)?;
@@ -220,6 +252,7 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
                 "area_fraction": sol.area_fraction.value,
                 "area_fraction_err": sol.area_fraction.err,
                 "persson_area_fraction": theory.area_fraction.value,
+                "persson_area_fraction_err": theory.area_fraction.err,
                 "sigma_rms_top_pa": sol.sigma_rms_top,
                 "contact_pressure": stats_json(&sol.contact_pressure),
                 "interface_normal": stats_json(&fields.normal_stats),
@@ -227,7 +260,9 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
                 "bond_strength_pa": bond,
                 "shear_fraction_above_bond": above,
                 "comparison": rows.iter().map(|r| json!({
-                    "quantity": r.name, "unit": r.unit, "persson": r.persson,
+                    "quantity": r.name, "unit": r.unit,
+                    "persson": r.persson.map(|p| p.value),
+                    "persson_err": r.persson.map(|p| p.err),
                     "exact": r.exact, "ratio": r.ratio(),
                 })).collect::<Vec<_>>(),
             });
@@ -260,32 +295,27 @@ fn rows(
     bond: Option<f64>,
     above: Option<f64>,
 ) -> Vec<Row> {
-    let v = |e: Option<coatcheck::prec::Estimate>| e.map(|e| e.value);
-    let tau_rms = v(theory.tau_rms_interface);
+    let tau_rms = theory.tau_rms_interface;
+    let area = theory.area_fraction;
     let mut rows = vec![
-        Row::new(
-            "A/A0",
-            "",
-            Some(theory.area_fraction.value),
-            sol.area_fraction.value,
-        ),
+        Row::new("A/A0", "", Some(area), sol.area_fraction.value),
         Row::new(
             "sigma_rms top",
             "Pa",
-            v(theory.sigma_rms_top),
+            theory.sigma_rms_top,
             sol.sigma_rms_top,
         ),
         Row::new(
             "sigma_rms interface",
             "Pa",
-            v(theory.sigma_rms_interface),
+            theory.sigma_rms_interface,
             fields.normal_stats.rms_dev,
         ),
         Row::new("tau_rms interface", "Pa", tau_rms, fields.shear_stats.rms),
         Row::new(
             "contact pressure mean",
             "Pa",
-            Some(sol.p0 / theory.area_fraction.value),
+            Some(area.map(|a| sol.p0 / a, |a| sol.p0 / (a * a))),
             sol.contact_pressure.mean,
         ),
     ];
@@ -319,7 +349,8 @@ fn rows(
     ));
     for q in &fields.shear_stats.quantiles {
         // Persson: |τ| half-normal with rms τ_rms, so the quantile at P is τ_peak(ε = 1 − P).
-        let p = tau_rms.map(|t| tau_peak(t, 1.0 - q.prob));
+        let k = tau_peak(1.0, 1.0 - q.prob);
+        let p = tau_rms.map(|t| t.map(|t| k * t, |_| k));
         rows.push(Row::new(
             format!("interface |tau| q{}", q.prob),
             "Pa",
@@ -337,7 +368,11 @@ fn rows(
         rows.push(Row::new(
             "area fraction |tau| > bond",
             "",
-            tau_rms.map(|t| tau_exceedance(t, b)),
+            tau_rms.map(|t| Estimate {
+                value: tau_exceedance(t.value, b),
+                err: (tau_exceedance(t.value + t.err, b) - tau_exceedance(t.value, b)).abs(),
+                status: t.status,
+            }),
             f,
         ));
     }
@@ -408,6 +443,7 @@ fn print_table(
         "quantity",
         "unit",
         "Persson",
+        "Persson err",
         "exact (BEM)",
         "exact/Persson",
     ]);
@@ -416,7 +452,8 @@ fn print_table(
         t.add_row(vec![
             r.name.clone(),
             r.unit.to_string(),
-            num(r.persson),
+            num(r.persson.map(|p| p.value)),
+            r.persson.map_or("-".into(), |p| format!("{:.1e}", p.err)),
             format!("{:.4e}", r.exact),
             r.ratio().map_or("-".into(), |v| format!("{v:.3}")),
         ]);
@@ -461,4 +498,216 @@ fn write_fields(
         }
         Ok(())
     })
+}
+
+/// The map behind `check --verify`: the scene's height file, which must be a height map.
+pub fn scene_map(scene: &coatcheck::scene::Scene) -> Result<(PathBuf, Surface), Error> {
+    use coatcheck::scene::RoughnessSource;
+    use coatcheck::topography::io::{HeightKind, sniff};
+    let origin = || {
+        scene
+            .file
+            .as_ref()
+            .map_or("--verify".to_string(), |p| p.display().to_string())
+    };
+    let RoughnessSource::Profile { path } = &scene.roughness.source else {
+        return Err(Error::Value {
+            origin: origin(),
+            msg: "--verify solves the contact on the measured surface: give the roughness as a \
+                  height map (roughness.profile or --profile), not as a spectrum or a model"
+                .into(),
+        });
+    };
+    if sniff(path)? == Some(HeightKind::Lines) {
+        return Err(Error::Input {
+            path: path.clone(),
+            line: 1,
+            msg: "--verify needs a height map (a matrix of heights), not line scans".into(),
+        });
+    }
+    let opts = MapOptions {
+        periodic: Some(true),
+        ..MapOptions::default()
+    };
+    let map = read_height_map(path, &opts)?;
+    Ok((path.clone(), Surface::from_height_map(&map)?))
+}
+
+/// Persson's value and the exact one, for the side-by-side rows of `check --verify`.
+fn check_rows(
+    ev: &coatcheck::check::Evaluation,
+    v: &Verification,
+) -> Vec<(&'static str, &'static str, Option<Estimate>, Estimate)> {
+    let c = &ev.contact;
+    let mut rows = vec![
+        (
+            "A/A0",
+            "area_fraction",
+            Some(c.area_fraction),
+            v.area_fraction,
+        ),
+        (
+            "mean contact pressure",
+            "mean_contact_pressure_pa",
+            Some(ev.mean_contact_pressure),
+            v.mean_contact_pressure,
+        ),
+        (
+            "sigma_rms top",
+            "sigma_rms_top_pa",
+            c.sigma_rms_top,
+            v.sigma_rms_top,
+        ),
+        (
+            "sigma_rms interface",
+            "sigma_rms_interface_pa",
+            c.sigma_rms_interface,
+            v.sigma_rms_interface,
+        ),
+        (
+            "tau_rms interface",
+            "tau_rms_interface_pa",
+            c.tau_rms_interface,
+            v.tau_rms_interface,
+        ),
+        ("tau_peak", "tau_peak_pa", ev.tau_peak, v.tau_peak.value),
+        (
+            "sigma_peak interface",
+            "sigma_peak_interface_pa",
+            ev.sigma_peak_interface,
+            v.sigma_peak_interface.value,
+        ),
+    ];
+    rows.push((
+        "P(|tau| > bond strength)",
+        "bond_exceedance",
+        ev.bond_exceedance.map(|p| Estimate {
+            value: p,
+            err: 0.0,
+            status: Termination::Converged,
+        }),
+        v.bond_exceedance,
+    ));
+    rows
+}
+
+/// The `check --verify` section as tables (MPa, 4 significant digits, like the check's report).
+pub fn check_table(map: &Path, ev: &coatcheck::check::Evaluation, v: &Verification) -> String {
+    use coatcheck::report::sig;
+    use comfy_table::presets::UTF8_FULL_CONDENSED;
+    let mut out = format!(
+        "exact check on the height map {} ({} x {} pixels, q_L d = {}; boundary elements, {} \
+         iterations; error = difference to the same map at half resolution)\n",
+        map.display(),
+        v.nx,
+        v.ny,
+        sig(v.q_low_d, 3),
+        v.convergence.iterations
+    );
+    let show = |key: &str, x: f64| match key.strip_suffix("_pa") {
+        Some(_) => format!("{} MPa", sig(x * 1e-6, 4)),
+        None => sig(x, 4),
+    };
+    let mut t = Table::new();
+    t.load_preset(UTF8_FULL_CONDENSED);
+    t.set_header(vec![
+        "quantity",
+        "Persson",
+        "exact (BEM)",
+        "error estimate",
+        "exact/Persson",
+    ]);
+    for (name, key, p, e) in check_rows(ev, v) {
+        let ratio = p
+            .filter(|p| p.value != 0.0)
+            .map_or("-".into(), |p| sig(e.value / p.value, 3));
+        t.add_row(vec![
+            name.to_string(),
+            p.map_or("-".into(), |p| show(key, p.value)),
+            show(key, e.value),
+            show(key, e.err),
+            ratio,
+        ]);
+    }
+    out += &format!("{t}\n");
+    let mut c = Table::new();
+    c.load_preset(UTF8_FULL_CONDENSED);
+    c.set_header(vec!["check (exact)", "value", "limit", "margin", "result"]);
+    for ch in &v.checks {
+        let mut result = if ch.pass { "PASS" } else { "FAIL" }.to_string();
+        if !ch.resolved {
+            result += " (map maximum: epsilon < 1/pixels)";
+        }
+        c.add_row(vec![
+            ch.kind.name().to_string(),
+            show("_pa", ch.value.value),
+            format!("<= {}", show("_pa", ch.limit)),
+            format!("{:+.1} %", 100.0 * ch.margin),
+            result,
+        ]);
+    }
+    out += &format!("{c}\n");
+    out += &format!(
+        "exact verdict: {}; with --verify the design passes only if both Persson's and the exact \
+         checks pass (min-thickness is judged by Persson's theory only)\n",
+        if v.pass { "PASS" } else { "FAIL" }
+    );
+    out
+}
+
+/// The `check --verify` section as a JSON value.
+pub fn check_json(map: &Path, ev: &coatcheck::check::Evaluation, v: &Verification) -> Value {
+    let mut m = serde_json::Map::new();
+    m.insert("map".into(), json!(map.display().to_string()));
+    m.insert("nx".into(), json!(v.nx));
+    m.insert("ny".into(), json!(v.ny));
+    m.insert("q_low_d".into(), json!(v.q_low_d));
+    for (_, key, p, e) in check_rows(ev, v) {
+        m.insert(key.into(), json!(e.value));
+        m.insert(format!("{key}_err"), json!(e.err));
+        m.insert(format!("persson_{key}"), json!(p.map(|p| p.value)));
+    }
+    m.insert("peaks_resolved".into(), json!(v.tau_peak.resolved));
+    m.insert(
+        "checks".into(),
+        json!(
+            v.checks
+                .iter()
+                .map(|c| json!({
+                    "name": c.kind.name(), "value": c.value.value, "value_err": c.value.err,
+                    "limit": c.limit, "margin": c.margin, "pass": c.pass, "resolved": c.resolved,
+                }))
+                .collect::<Vec<_>>()
+        ),
+    );
+    m.insert("solver".into(), json!(v.convergence));
+    m.insert("seconds".into(), json!(v.seconds));
+    m.insert(
+        "verdict".into(),
+        json!(if v.pass { "pass" } else { "fail" }),
+    );
+    Value::Object(m)
+}
+
+/// The `check --verify` section as CSV rows (`verify:<key>,value,err,unit`), no header.
+pub fn check_csv(ev: &coatcheck::check::Evaluation, v: &Verification) -> String {
+    let mut out = String::new();
+    for (_, key, _, e) in check_rows(ev, v) {
+        let (key, unit) = key.strip_suffix("_pa").map_or((key, "1"), |k| (k, "Pa"));
+        out += &format!("verify:{key},{:e},{:e},{unit}\n", e.value, e.err);
+    }
+    for c in &v.checks {
+        let name = c.kind.name();
+        out += &format!(
+            "verify:check:{name},{:e},{:e},Pa\n",
+            c.value.value, c.value.err
+        );
+        out += &format!("verify:limit:{name},{:e},,Pa\n", c.limit);
+        out += &format!("verify:pass:{name},{},,\n", u8::from(c.pass));
+    }
+    out += &format!(
+        "verify:verdict,{},,\n",
+        if v.pass { "pass" } else { "fail" }
+    );
+    out
 }

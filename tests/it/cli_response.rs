@@ -39,8 +39,12 @@ fn csv_reproduces_the_notes_table() {
         [10.0, 0.99999908899, 9.9878763764e-4, 9.0798876490e-4],
     ];
     for (row, w) in rows.iter().zip(want) {
-        for k in 0..4 {
-            assert!(((row[k] - w[k]) / w[k]).abs() < 1e-10, "{row:?}");
+        // Columns qd, S, S_err, f, f_err, g, g_err; each err is KERNEL_RTOL of its value.
+        assert!(((row[0] - w[0]) / w[0]).abs() < 1e-10, "{row:?}");
+        for k in 1..4 {
+            let (v, e) = (row[2 * k - 1], row[2 * k]);
+            assert!(((v - w[k]) / w[k]).abs() < 1e-10, "{row:?}");
+            assert_eq!(e, coatcheck::prec::KERNEL_RTOL * v.abs(), "{row:?}");
         }
     }
 }
@@ -65,7 +69,9 @@ fn range_and_json() {
         v.as_array()
             .unwrap()
             .iter()
-            .all(|r| r["S"].as_f64().unwrap() > 0.0)
+            .all(|r| r["S"].as_f64().unwrap() > 0.0
+                && r["S_err"].as_f64().unwrap() > 0.0
+                && r["g_err"].as_f64().unwrap() >= 0.0)
     );
 }
 

@@ -20,7 +20,8 @@ fn rel(a: f64, b: f64) -> f64 {
 }
 
 /// Every case of the reference grid (qd 1e-8..1e4, E0/E1 1e-8..1e8, ν in {0, 0.25, 0.3,
-/// 0.49985, 0.5}) to relative error ≤ 1e-12.
+/// 0.49985, 0.5}) to relative error ≤ `KERNEL_RTOL` (2e-13, the bound outputs quote; the issue
+/// asks for 1e-12).
 #[test]
 fn kernels_match_high_precision_reference() {
     let data = include_str!("../data/kernels_ref.csv");
@@ -43,7 +44,7 @@ fn kernels_match_high_precision_reference() {
             };
             worst[k] = worst[k].max(err);
             assert!(
-                err <= 1e-12,
+                err <= coatcheck::prec::KERNEL_RTOL,
                 "{line}: kernel {k} got {got:e}, want {want:e}, rel err {err:e}"
             );
         }
