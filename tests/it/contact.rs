@@ -223,6 +223,16 @@ fn only_requested_quantities() {
         .unwrap();
     assert!(area.kernel_evaluations < all.kernel_evaluations);
     assert_eq!(area.area_fraction, all.area_fraction);
+    // The area (and the top stress, a closed form in G(q1)) never touch f, g.
+    let top = Request {
+        sigma_top: true,
+        ..Request::default()
+    };
+    for req in [Request::default(), top] {
+        let c = engine.evaluate(&rubber_on_steel(1e-5), 1e5, req).unwrap();
+        assert_eq!(c.interface_kernel_evaluations, 0);
+    }
+    assert_eq!(all.interface_kernel_evaluations, all.kernel_evaluations);
 }
 
 /// Fig. 7 statements: for q0 d ≫ 1 the interface stresses vanish; for q0 d ≲ 1/2 the interface
