@@ -664,23 +664,13 @@ fn converged(c: &Contact, rtol: f64) -> bool {
 pub const ROUNDING_FLOOR: f64 = 4.0 * KERNEL_RTOL + 64.0 * EPS;
 
 fn add_rounding_floor(c: &mut Contact) {
-    for e in [
-        Some(&mut c.g1),
-        Some(&mut c.area_fraction),
-        c.sigma_rms_top.as_mut(),
-        c.sigma_rms_interface.as_mut(),
-        c.tau_rms_interface.as_mut(),
-        c.e_eff_over_e_film.as_mut(),
-    ]
-    .into_iter()
-    .flatten()
-    {
+    for e in estimates_mut(c) {
         e.err += ROUNDING_FLOOR * e.value.abs();
     }
 }
 
-fn mark_not_reached(c: &mut Contact, rtol: f64) {
-    for e in [
+fn estimates_mut(c: &mut Contact) -> impl Iterator<Item = &mut Estimate> {
+    [
         Some(&mut c.g1),
         Some(&mut c.area_fraction),
         c.sigma_rms_top.as_mut(),
@@ -690,7 +680,10 @@ fn mark_not_reached(c: &mut Contact, rtol: f64) {
     ]
     .into_iter()
     .flatten()
-    {
+}
+
+fn mark_not_reached(c: &mut Contact, rtol: f64) {
+    for e in estimates_mut(c) {
         // A NaN estimate is never reported as converged.
         if e.err.is_nan() || e.err > rtol * e.value.abs() {
             e.status = Termination::ToleranceNotReached;
