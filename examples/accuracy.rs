@@ -16,9 +16,13 @@
 use coatcheck::contact::{Contact, Engine, Request, tau_peak};
 use coatcheck::layer::{Bilayer, Elastic, Stack};
 use coatcheck::prec::{DEFAULT_EPSILON, DEFAULT_RTOL, Estimate, Settings, Termination};
-use coatcheck::psd::{Spectrum, Tabulated};
+use coatcheck::psd::Spectrum;
 use std::hint::black_box;
 use std::time::Instant;
+
+#[path = "../tests/it/fixtures.rs"]
+mod fixtures;
+use fixtures::measured_like;
 
 const RTOLS: [f64; 8] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
 const REF_RTOL: f64 = 1e-12;
@@ -48,28 +52,6 @@ fn paper_spectrum() -> Spectrum {
     Spectrum::self_affine(1.0, 1e5, 1e8, None)
         .and_then(|s| s.scaled_to_rms_slope(1.0))
         .expect("valid spectrum")
-}
-
-/// A measured-like tabulated PSD: self-affine (H = 0.8) with roll-off at 3e4 1/m and a 3 %
-/// ripple, `n` points from 1e4 to 1e8 1/m, rms slope 0.5.
-fn measured_like(n: usize) -> Spectrum {
-    let q: Vec<f64> = (0..n)
-        .map(|i| 1e4 * 1e4f64.powf(i as f64 / (n - 1) as f64))
-        .collect();
-    let c: Vec<f64> = q
-        .iter()
-        .map(|&q| {
-            let base = if q < 3e4 {
-                1.0
-            } else {
-                (q / 3e4).powf(-2.0 * 1.8)
-            };
-            base * (1.0 + 0.03 * (7.0 * q.ln()).sin())
-        })
-        .collect();
-    Spectrum::Tabulated(Tabulated::new(q, c).expect("valid table"))
-        .scaled_to_rms_slope(0.5)
-        .expect("positive slope")
 }
 
 /// A/A0 column of tests/data/contact_ref.csv for the row matching (e0, nu0, e1, nu1, d, p0).

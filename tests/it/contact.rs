@@ -4,7 +4,7 @@
 use coatcheck::contact::{Engine, NormalStress, Request, tau_exceedance, tau_peak};
 use coatcheck::layer::{Bilayer, Elastic, Stack};
 use coatcheck::prec::Settings;
-use coatcheck::psd::{Spectrum, Tabulated};
+use coatcheck::psd::Spectrum;
 use libm::erf;
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -129,27 +129,7 @@ fn top_closed_form_equals_quadrature_when_f_is_one() {
 /// the converged value (rtol 1e-11 on a 4× finer grid).
 #[test]
 fn error_estimates_bound_true_errors() {
-    let measured = {
-        // A 1000-point measured-like spectrum: self-affine with roll-off and a 3 % ripple.
-        let n = 1000;
-        let q: Vec<f64> = (0..n)
-            .map(|i| 1e4 * 1e4f64.powf(i as f64 / (n - 1) as f64))
-            .collect();
-        let c: Vec<f64> = q
-            .iter()
-            .map(|&q| {
-                let base = if q < 3e4 {
-                    1.0
-                } else {
-                    (q / 3e4).powf(-2.0 * 1.8)
-                };
-                base * (1.0 + 0.03 * (7.0 * q.ln()).sin())
-            })
-            .collect();
-        Spectrum::Tabulated(Tabulated::new(q, c).unwrap())
-            .scaled_to_rms_slope(0.5)
-            .unwrap()
-    };
+    let measured = crate::fixtures::measured_like(1000);
     let gaussian = Spectrum::gaussian(1e5, 1e4)
         .unwrap()
         .scaled_to_rms_slope(1.0)

@@ -9,6 +9,7 @@ mod common;
 mod contact;
 mod extreme;
 mod figures;
+mod fixtures;
 mod fuzz;
 mod layer;
 mod psd_convert;
