@@ -19,11 +19,14 @@
 //! neighbouring nodes and a safety factor 2. Nodes and weights do not depend on d: an [`Engine`]
 //! is built once per spectrum and serves every thickness. G at the interior nodes (for P) comes
 //! from the same rule's partial integrals (exact for ψ linear on the panel).
+//! The kernels S⁻², f², g² at the nodes come from a [`KernelTable`] of the material pair (built
+//! once per engine and pair, checked against the exact forms to 2e−14 relative; the exact forms
+//! when no table resolves them), four times cheaper than the stable forms themselves.
 //! If the estimate misses rtol, the evaluation is repeated on grids with panels halved, up to
 //! [`MAX_REFINE`] times, and reports `ToleranceNotReached` if it still misses.
 
 use crate::error::Error;
-use crate::layer::Stack;
+use crate::layer::{Bilayer, KernelTable, Squared, Stack};
 use crate::prec::{EPS, Estimate, KERNEL_RTOL, Settings, Termination};
 use crate::psd::Spectrum;
 use crate::quad::{self, ExpGauss2};
@@ -31,7 +34,7 @@ use libm::{erf, erfc};
 use serde::Serialize;
 use statrs::function::erf::erfc_inv;
 use std::f64::consts::PI;
-use std::sync::OnceLock;
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// How many times a grid may be refined (panels halved) when the error estimate misses rtol.
 pub const MAX_REFINE: usize = 3;
@@ -355,6 +358,8 @@ const INNER_WIDTH: f64 = 1e-11;
 /// 6-node interpolant of the G integrand from the panel's left end to each node.
 struct GlPanel {
     q6: [f64; 6],
+    u6: [f64; 6],
+    u5: [f64; 5],
     w6: [f64; 6],
     b6: [[f64; 6]; 6],
     q5: [f64; 5],
@@ -456,6 +461,8 @@ impl Graded {
             let wq6: [f64; 6] = std::array::from_fn(|k| w_of(q6[k]));
             panels.push(GlPanel {
                 q6,
+                u6: q6.map(f64::ln),
+                u5: q5.map(f64::ln),
                 w6: std::array::from_fn(|k| gw6[k] * half * wq6[k]),
                 b6: std::array::from_fn(|j| std::array::from_fn(|k| b6n[j][k] * half * wq6[k])),
                 q5,
@@ -479,20 +486,13 @@ impl Graded {
         11 * self.panels.len() + 1
     }
 
-    fn integrate(
-        &self,
-        layers: &crate::layer::Bilayer,
-        d: f64,
-        p0: f64,
-        cg: f64,
-        req: Request,
-    ) -> Near {
-        let kf = |q: f64| {
-            let r = layers.response(q * d);
-            (1.0 / (r.s * r.s), r.f * r.f, r.g * r.g)
+    fn integrate(&self, kernels: &Kernels, p0: f64, cg: f64, req: Request) -> Near {
+        let kf = |q: f64, u: f64| {
+            let r = kernels.squared(q, u);
+            (r.k, r.f2, r.g2)
         };
         // Innermost piece: G grows linearly from 0, F² is constant to 1e-10.
-        let (k0, f0, g0) = kf(self.q_l);
+        let (k0, f0, g0) = kf(self.q_l, self.q_l.ln());
         let g_inner = self.w_l * k0;
         let j0 = top_variance_half(p0, cg * g_inner) / cg;
         let mut near = Near {
@@ -502,8 +502,8 @@ impl Graded {
             tau: (g0 * j0, 1e-9 * g0 * j0),
         };
         for panel in &self.panels {
-            let e6: [(f64, f64, f64); 6] = std::array::from_fn(|k| kf(panel.q6[k]));
-            let e5: [(f64, f64, f64); 5] = std::array::from_fn(|k| kf(panel.q5[k]));
+            let e6: [(f64, f64, f64); 6] = std::array::from_fn(|k| kf(panel.q6[k], panel.u6[k]));
+            let e5: [(f64, f64, f64); 5] = std::array::from_fn(|k| kf(panel.q5[k], panel.u5[k]));
             let g6: f64 = (0..6).map(|k| panel.w6[k] * e6[k].0).sum();
             let g5: f64 = (0..5).map(|k| panel.w5[k] * e5[k].0).sum();
             let p6: [f64; 6] = std::array::from_fn(|j| {
@@ -558,6 +558,52 @@ pub struct Engine {
     settings: Settings,
     grids: [OnceLock<Grid>; MAX_REFINE + 1],
     graded: [OnceLock<Graded>; MAX_REFINE + 1],
+    /// The kernel table of the last material pair evaluated (d-independent; rebuilt, wider, when
+    /// a thickness needs q·d outside it).
+    table: Mutex<Option<Arc<KernelTable>>>,
+}
+
+/// How far (in ln(qd)) a rebuilt kernel table reaches beyond the range asked for, so that a
+/// thickness scan does not rebuild it at every step.
+const TABLE_MARGIN: f64 = 2.0;
+
+/// The layer kernels at nodes q (with u = ln q) for one thickness: tabulated, or exact when no
+/// table resolves them (`layer::KernelTable`).
+enum Kernels<'a> {
+    Table {
+        table: &'a KernelTable,
+        d: f64,
+        ln_d: f64,
+    },
+    Exact {
+        layers: &'a Bilayer,
+        d: f64,
+    },
+}
+
+impl Kernels<'_> {
+    #[inline]
+    fn k(&self, q: f64, u: f64) -> f64 {
+        match *self {
+            Kernels::Table { table, d, ln_d } => table.k(q * d, u + ln_d),
+            Kernels::Exact { layers, d } => layers.s(q * d).powi(-2),
+        }
+    }
+
+    #[inline]
+    fn squared(&self, q: f64, u: f64) -> Squared {
+        match *self {
+            Kernels::Table { table, d, ln_d } => table.squared(q * d, u + ln_d),
+            Kernels::Exact { layers, d } => {
+                let r = layers.response(q * d);
+                Squared {
+                    k: r.s.powi(-2),
+                    f2: r.f * r.f,
+                    g2: r.g * r.g,
+                }
+            }
+        }
+    }
 }
 
 /// Panel width (in ln q) for a relative tolerance: the two-node rule's relative error per panel
@@ -573,7 +619,30 @@ impl Engine {
             settings,
             grids: Default::default(),
             graded: Default::default(),
+            table: Mutex::new(None),
         }
+    }
+
+    /// A kernel table for `stack` covering every node's q·d, from the cache or newly built.
+    fn table_for(&self, stack: &Stack) -> Option<Arc<KernelTable>> {
+        let (q_lo, q_hi) = (self.spectrum.q_low(), self.spectrum.support().1);
+        let d = stack.thickness;
+        let (x_min, x_max) = (q_lo * d, q_hi * d);
+        let mut cache = self.table.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(t) = cache
+            .as_ref()
+            .filter(|t| t.layers() == &stack.layers && t.covers(x_min, x_max))
+        {
+            return Some(Arc::clone(t));
+        }
+        let (mut lo, mut hi) = (x_min.ln() - TABLE_MARGIN, x_max.ln() + TABLE_MARGIN);
+        if let Some(t) = cache.as_ref().filter(|t| t.layers() == &stack.layers) {
+            let (a, b) = t.range();
+            (lo, hi) = (lo.min(a.ln()), hi.max(b.ln()));
+        }
+        let table = Arc::new(KernelTable::new(stack.layers, lo.exp(), hi.exp())?);
+        *cache = Some(Arc::clone(&table));
+        Some(table)
     }
 
     pub fn spectrum(&self) -> &Spectrum {
@@ -612,6 +681,18 @@ impl Engine {
                 "a finite pressure > 0 in Pa",
             ));
         }
+        let table = self.table_for(stack);
+        let kernels = match table.as_deref() {
+            Some(table) => Kernels::Table {
+                table,
+                d: stack.thickness,
+                ln_d: stack.thickness.ln(),
+            },
+            None => Kernels::Exact {
+                layers: &stack.layers,
+                d: stack.thickness,
+            },
+        };
         let mut evaluations = 0;
         let mut interface = 0;
         let mut last = None;
@@ -623,7 +704,7 @@ impl Engine {
             if request.interface() {
                 interface += here;
             }
-            let mut c = evaluate_on(grid, graded, stack, p0, request, evaluations)?;
+            let mut c = evaluate_on(grid, graded, &kernels, stack, p0, request, evaluations)?;
             c.interface_kernel_evaluations = interface;
             add_rounding_floor(&mut c);
             let done = converged(&c, self.settings.rtol);
@@ -753,6 +834,7 @@ fn top_variance_half(p0: f64, g1: f64) -> f64 {
 fn evaluate_on(
     grid: &Grid,
     graded: Option<&Graded>,
+    kernels: &Kernels,
     stack: &Stack,
     p0: f64,
     req: Request,
@@ -776,24 +858,22 @@ fn evaluate_on(
         vec![]
     };
     for j in 0..n {
-        let x = grid.q[j] * d;
         if need_fg {
-            let r = layers.response(x);
-            kern[j] = 1.0 / (r.s * r.s);
+            let r = kernels.squared(grid.q[j], grid.u[j]);
+            kern[j] = r.k;
             if req.sigma_interface {
-                f2[j] = r.f * r.f;
+                f2[j] = r.f2;
             }
             if req.tau_interface {
-                g2[j] = r.g * r.g;
+                g2[j] = r.g2;
             }
         } else {
-            let s = layers.s(x);
-            kern[j] = 1.0 / (s * s);
+            kern[j] = kernels.k(grid.q[j], grid.u[j]);
         }
         if !kern[j].is_finite() {
             return Err(Error::Numerical {
                 what: "layer response",
-                detail: format!("S(qd) = 0 at qd = {x:e}"),
+                detail: format!("S(qd) = 0 at qd = {:e}", grid.q[j] * d),
             });
         }
     }
@@ -825,7 +905,7 @@ fn evaluate_on(
     if let Some(graded) = graded {
         let f: Vec<f64> = kern.iter().zip(&grid.rho).map(|(k, r)| k * r).collect();
         // The start of the range, where P(G(u)) ∝ (u − u_L)^{-1/2}: graded panels.
-        let near = graded.integrate(layers, d, p0, cg, req);
+        let near = graded.integrate(kernels, p0, cg, req);
         // Then the two-node panels. First G and P at every node (forward pass: running sum plus
         // the panel's partial integral), with the error of P from the error of G.
         let from = graded.base_from;

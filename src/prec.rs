@@ -25,6 +25,11 @@ pub const SEARCH_RTOL: f64 = 1e-6;
 /// kernels' error estimate.
 pub const KERNEL_RTOL: f64 = 2e-13;
 
+/// How closely the tabulated kernels (`layer::KernelTable`) must match the exact ones, relative
+/// to the largest value on each panel; checked when a table is built. Small against
+/// [`KERNEL_RTOL`], so the kernels' error bound holds for the tabulated values too.
+pub const TABLE_RTOL: f64 = 2e-14;
+
 /// Default exceedance probability that defines a "peak" value (fraction of the interface).
 pub const DEFAULT_EPSILON: f64 = 1e-6;
 

@@ -1,0 +1,273 @@
+//! Tabulated layer kernels for fast repeated evaluation.
+//!
+//! The contact integrals need S⁻², f² and g² at thousands of values of x = qd per thickness, and
+//! the stable forms of [`Bilayer::response`] cost ~70 ns each. All three depend on x alone, so for
+//! one material pair they are tabulated once in y = ln x: uniform panels of width [`WIDTH`] in y,
+//! each a polynomial of degree [`DEGREE`] through the Chebyshev points of the panel (stored as
+//! monomials in the panel's local variable t ∈ [−1, 1], evaluated by Estrin's scheme). The tabulated
+//! functions are K = S⁻², F = f² e^{2x} and Γ = g² e^{2x}: all smooth in y with no large dynamic
+//! range across a panel (f and g decay like e^{−x}, which the table leaves to one `exp` per point).
+//!
+//! Accuracy is checked when the table is built, not assumed: every panel is compared with the
+//! exact kernels at points between its interpolation nodes and at its ends; if any differs by
+//! more than [`TABLE_RTOL`] of the panel's largest value the whole table is rebuilt with panels
+//! half as wide, and after [`MAX_HALVINGS`] halvings the caller gets `None` and uses the exact
+//! kernels.
+//!
+//! Far field. Above x = [`X_FAR`] = 40, t = e^{−2x} < 2e−35 drops out of every stable form in
+//! f64 (its terms enter as t, x t, x² t relative to O(1) ones, all below 1e−31): S = 1 and f e^x,
+//! g e^x are exactly linear in x (f e^x = (1+κ0)[2(1−ν0) + 2r(1−ν1) + x(1 + rκ1)] / ((1+rκ1)(κ0+r)),
+//! and g likewise). The table takes the lines through the exact values at x = 40 and 80 and needs
+//! no panels there; the test `far_field_is_linear` checks them against the exact kernels until f²
+//! and g² underflow (q·d ≈ 350).
+
+use super::{Bilayer, QD_BULK};
+use crate::prec::TABLE_RTOL;
+use std::f64::consts::PI;
+
+/// Polynomial degree per panel.
+pub const DEGREE: usize = 13;
+const N: usize = DEGREE + 1;
+/// Panel width in y = ln(qd) before any halving.
+pub const WIDTH: f64 = 0.25;
+/// How often the panel width may be halved when a panel misses [`TABLE_RTOL`].
+pub const MAX_HALVINGS: u32 = 3;
+/// Above this qd the kernels are S = 1 and f e^x, g e^x linear in x (module doc).
+pub const X_FAR: f64 = 40.0;
+/// The widest y-range a table may span (beyond it the exact kernels are cheaper than building).
+pub const MAX_SPAN: f64 = 120.0;
+
+/// S⁻², f² and g² at one x = qd.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Squared {
+    /// S(qd)⁻².
+    pub k: f64,
+    /// f(qd)².
+    pub f2: f64,
+    /// g(qd)².
+    pub g2: f64,
+}
+
+/// Piecewise-polynomial tables of S⁻², f² e^{2x}, g² e^{2x} in y = ln(qd) for one material pair.
+#[derive(Debug, Clone)]
+pub struct KernelTable {
+    layers: Bilayer,
+    y0: f64,
+    y1: f64,
+    inv_width: f64,
+    k: Vec<[f64; N]>,
+    f: Vec<[f64; N]>,
+    g: Vec<[f64; N]>,
+    /// f e^x and g e^x above [`X_FAR`]: intercepts and slopes.
+    far: [[f64; 2]; 2],
+}
+
+/// Monomial coefficients (in t) of the Chebyshev polynomials T_0..T_{N−1}.
+fn chebyshev_monomials() -> [[f64; N]; N] {
+    let mut t = [[0.0; N]; N];
+    t[0][0] = 1.0;
+    t[1][1] = 1.0;
+    for n in 2..N {
+        for k in 0..N {
+            let up = if k > 0 { 2.0 * t[n - 1][k - 1] } else { 0.0 };
+            t[n][k] = up - t[n - 2][k];
+        }
+    }
+    t
+}
+
+/// Interpolation at the Chebyshev points t_j = cos(π(j + ½)/N): the discrete cosine transform
+/// to Chebyshev coefficients (which decay fast for these smooth functions), then each T_k expanded
+/// in monomials. The coefficients are formed before the expansion so that rounding in the
+/// transform is not multiplied by the large monomial coefficients of T_k.
+struct Interpolation {
+    cosines: [[f64; N]; N],
+    monomials: [[f64; N]; N],
+}
+
+impl Interpolation {
+    fn new() -> Self {
+        Self {
+            cosines: std::array::from_fn(|k| {
+                let scale = if k == 0 { 1.0 } else { 2.0 } / N as f64;
+                std::array::from_fn(|j| scale * (PI * k as f64 * (j as f64 + 0.5) / N as f64).cos())
+            }),
+            monomials: chebyshev_monomials(),
+        }
+    }
+
+    fn coefficients(&self, values: &[f64; N]) -> [f64; N] {
+        let mut mono = [0.0; N];
+        for (row, t_k) in self.cosines.iter().zip(&self.monomials) {
+            let a: f64 = row.iter().zip(values).map(|(c, v)| c * v).sum();
+            for (m, c) in mono.iter_mut().zip(t_k) {
+                *m += a * c;
+            }
+        }
+        mono
+    }
+}
+
+/// The panel polynomial at t by Estrin's scheme (pairs, then powers t², t⁴, t⁸): a dependency
+/// chain of depth 5 instead of Horner's 13, which is what the evaluation time is made of.
+#[inline(always)]
+fn poly(c: &[f64; N], t: f64) -> f64 {
+    let t2 = t * t;
+    let t4 = t2 * t2;
+    let t8 = t4 * t4;
+    let p = |i: usize| c[i] + c[i + 1] * t;
+    let low = (p(0) + t2 * p(2)) + t4 * (p(4) + t2 * p(6));
+    let high = (p(8) + t2 * p(10)) + t4 * p(12);
+    low + t8 * high
+}
+
+/// f e^x and g e^x as lines a + b x above [`X_FAR`], through the exact values at 40 and 80.
+fn far_lines(layers: &Bilayer) -> [[f64; 2]; 2] {
+    let (xa, xb) = (X_FAR, 2.0 * X_FAR);
+    let (ra, rb) = (layers.response(xa), layers.response(xb));
+    let (ea, eb) = (xa.exp(), xb.exp());
+    let line = |va: f64, vb: f64| {
+        let slope = (vb - va) / (xb - xa);
+        [va - slope * xa, slope]
+    };
+    [line(ra.f * ea, rb.f * eb), line(ra.g * ea, rb.g * eb)]
+}
+
+/// The exact values tabulated at y.
+fn exact(layers: &Bilayer, y: f64) -> [f64; 3] {
+    let x = y.exp();
+    let r = layers.response(x);
+    // (f e^x)², not f² e^{2x}: near x = 700 the latter under- and overflows.
+    let e = x.exp();
+    [1.0 / (r.s * r.s), (r.f * e).powi(2), (r.g * e).powi(2)]
+}
+
+impl KernelTable {
+    /// A table covering qd in [x_min, x_max] (the part above 700 needs none), or `None` when the
+    /// range is too wide or the kernels are not resolved to [`TABLE_RTOL`] by the finest panels.
+    pub fn new(layers: Bilayer, x_min: f64, x_max: f64) -> Option<Self> {
+        let y1 = x_max.min(X_FAR).ln();
+        let y0 = x_min.ln().min(y1 - WIDTH);
+        if !(y0.is_finite() && y1.is_finite() && y1 - y0 <= MAX_SPAN) {
+            return None;
+        }
+        let interp = Interpolation::new();
+        (0..=MAX_HALVINGS)
+            .find_map(|h| Self::build(layers, y0, y1, WIDTH / f64::from(1 << h), &interp))
+    }
+
+    fn build(
+        layers: Bilayer,
+        y0: f64,
+        y1: f64,
+        width: f64,
+        interp: &Interpolation,
+    ) -> Option<Self> {
+        let panels = (((y1 - y0) / width).ceil() as usize).max(1);
+        let nodes: [f64; N] = std::array::from_fn(|j| (PI * (j as f64 + 0.5) / N as f64).cos());
+        // Checks: the panel's ends and the midpoints between its outer nodes.
+        let checks = [
+            -1.0,
+            1.0,
+            0.5 * (nodes[0] + nodes[1]),
+            0.5 * (nodes[N - 2] + nodes[N - 1]),
+            0.5 * (nodes[N / 2 - 1] + nodes[N / 2]),
+        ];
+        let mut table = KernelTable {
+            layers,
+            y0,
+            y1,
+            inv_width: 1.0 / width,
+            k: Vec::with_capacity(panels),
+            f: Vec::with_capacity(panels),
+            g: Vec::with_capacity(panels),
+            far: far_lines(&layers),
+        };
+        for p in 0..panels {
+            let centre = y0 + (p as f64 + 0.5) * width;
+            let at = |t: f64| exact(&layers, centre + 0.5 * width * t);
+            let vals: [[f64; 3]; N] = std::array::from_fn(|j| at(nodes[j]));
+            let mut coef = [[0.0; N]; 3];
+            for (q, c) in coef.iter_mut().enumerate() {
+                *c = interp.coefficients(&std::array::from_fn(|j| vals[j][q]));
+            }
+            for &t in &checks {
+                let want = at(t);
+                for q in 0..3 {
+                    let scale = vals
+                        .iter()
+                        .map(|v| v[q].abs())
+                        .fold(want[q].abs(), f64::max);
+                    if (poly(&coef[q], t) - want[q]).abs() > TABLE_RTOL * scale {
+                        return None;
+                    }
+                }
+            }
+            table.k.push(coef[0]);
+            table.f.push(coef[1]);
+            table.g.push(coef[2]);
+        }
+        Some(table)
+    }
+
+    /// The material pair tabulated.
+    pub fn layers(&self) -> &Bilayer {
+        &self.layers
+    }
+
+    /// The range of q·d tabulated (above its upper end, up to [`X_FAR`], nothing is needed).
+    pub fn range(&self) -> (f64, f64) {
+        (self.y0.exp(), self.y1.exp())
+    }
+
+    /// Whether the table covers qd in [x_min, x_max] (anything above [`X_FAR`] is covered).
+    pub fn covers(&self, x_min: f64, x_max: f64) -> bool {
+        x_min.ln() >= self.y0 && x_max.min(X_FAR).ln() <= self.y1
+    }
+
+    /// Panel and local variable for y, clamped to the table (rounding at its ends).
+    #[inline(always)]
+    fn locate(&self, y: f64) -> (usize, f64) {
+        let s = ((y - self.y0) * self.inv_width).max(0.0);
+        let p = (s as usize).min(self.k.len() - 1);
+        (p, 2.0 * (s - p as f64) - 1.0)
+    }
+
+    /// S⁻² at x = qd with y = ln x (x ≤ 700 must lie in the table's range).
+    #[inline]
+    pub fn k(&self, x: f64, y: f64) -> f64 {
+        if x > X_FAR {
+            return 1.0;
+        }
+        let (p, t) = self.locate(y);
+        poly(&self.k[p], t)
+    }
+
+    /// S⁻², f², g² at x = qd with y = ln x.
+    #[inline]
+    pub fn squared(&self, x: f64, y: f64) -> Squared {
+        if x > X_FAR {
+            if x > QD_BULK {
+                return Squared {
+                    k: 1.0,
+                    f2: 0.0,
+                    g2: 0.0,
+                };
+            }
+            let e = (-x).exp();
+            let [f, g] = self.far.map(|[a, b]| (a + b * x) * e);
+            return Squared {
+                k: 1.0,
+                f2: f * f,
+                g2: g * g,
+            };
+        }
+        let (p, t) = self.locate(y);
+        let e = (-2.0 * x).exp();
+        Squared {
+            k: poly(&self.k[p], t),
+            f2: poly(&self.f[p], t) * e,
+            g2: poly(&self.g[p], t) * e,
+        }
+    }
+}
