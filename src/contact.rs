@@ -115,6 +115,10 @@ struct Grid {
     left: Vec<f64>,
     /// Number of panels below 2 q_L.
     low_octave_panels: usize,
+    /// Per start node s: weights of the divided differences f[u_s, …, u_{s+k}], k = 1..4 (row
+    /// k − 1), over the nodes s..s+k (zero where the grid ends first). d-independent, so the
+    /// error estimates take a dot product instead of Newton's table with its divisions.
+    dd: Vec<[[f64; 5]; 4]>,
 }
 
 impl Grid {
@@ -159,6 +163,7 @@ impl Grid {
             width: vec![],
             left: vec![],
             low_octave_panels: 0,
+            dd: vec![],
         };
         let ln_w = |u: f64| 4.0 * u + spectrum.c(u.exp()).ln();
         for pair in knots.windows(2) {
@@ -238,7 +243,33 @@ impl Grid {
                 }
             }
         }
+        g.dd = (0..g.u.len())
+            .map(|s| {
+                let u = &g.u[s..(s + 5).min(g.u.len())];
+                std::array::from_fn(|row| {
+                    let k = row + 1;
+                    std::array::from_fn(|m| {
+                        if k >= u.len() || m > k {
+                            return 0.0;
+                        }
+                        (0..=k)
+                            .filter(|&l| l != m)
+                            .map(|l| 1.0 / (u[m] - u[l]))
+                            .product()
+                    })
+                })
+            })
+            .collect();
         g
+    }
+
+    /// The divided difference f[u_s, …, u_{s+k}] (k ≤ 4, s + k within the grid).
+    fn divided(&self, s: usize, k: usize, f: &[f64]) -> f64 {
+        self.dd[s][k - 1][..=k]
+            .iter()
+            .zip(&f[s..=s + k])
+            .map(|(w, v)| w * v)
+            .sum()
     }
 
     fn panels(&self) -> usize {
@@ -256,12 +287,16 @@ impl Grid {
                     return 0.0;
                 }
                 let start = (2 * p).saturating_sub(2).max(lo).min(n - 5);
-                ERR_SAFETY
-                    * self.err4[p]
-                    * (24.0 * divided_difference4(&self.u[start..start + 5], &f[start..start + 5]))
-                        .abs()
+                ERR_SAFETY * self.err4[p] * (24.0 * self.divided(start, 4, f)).abs()
             })
             .collect()
+    }
+
+    /// Σ_j w_j ρ_j ψ_j over the panels from `from` on.
+    fn weighted_sum(&self, psi: &[f64], from: usize) -> f64 {
+        (2 * from..self.q.len())
+            .map(|j| self.w[j] * self.rho[j] * psi[j])
+            .sum()
     }
 
     /// Σ_j w_j ρ_j ψ_j over the panels from `from` on, with its error estimate.
@@ -284,63 +319,37 @@ impl Grid {
 
     /// Error estimate of Σ w ρ K k2 P from panel `from` on, where P = P(G(u)) has kinks in its
     /// second derivative at the spectrum's knots (G'' jumps there) and so cannot be differenced
-    /// across panels. The smooth factor A = ρ K k2 is differenced (fourth-order Newton divided
-    /// differences over five nodes); P's u-derivatives come from the chain rule with the
-    /// analytic G-derivatives of erf(a/√G) and G' = cg W K ρ at the node; Leibniz's rule gives
-    /// (AP)⁗ and the Gauss error term err4·|(AP)⁗|, with the safety factor.
-    #[allow(clippy::too_many_arguments)]
-    fn product_errors(
-        &self,
-        kern: &[f64],
-        k2: &[f64],
-        p: &[f64],
-        g: &[f64],
-        p0: f64,
-        cg: f64,
-        from: usize,
-    ) -> f64 {
+    /// across panels. The smooth factor A = ρ K k2 is differenced (divided differences over five
+    /// nodes); P's u-derivatives at each panel's first node (`p_der`, from
+    /// [`probability_derivatives`]) come from the chain rule with the analytic G-derivatives of
+    /// erf(a/√G); Leibniz's rule gives (AP)⁗ and the Gauss error term err4·|(AP)⁗|, with the
+    /// safety factor.
+    fn product_errors(&self, kern: &[f64], k2: &[f64], p_der: &[[f64; 5]], from: usize) -> f64 {
         let n = self.q.len();
         let lo = 2 * from;
         if n - lo < 5 {
             return 0.0;
         }
-        let a_of = |j: usize| self.rho[j] * kern[j] * k2[j];
         let mut total = 0.0;
         for panel in from..self.panels() {
             let start = (2 * panel).saturating_sub(2).max(lo).min(n - 5);
-            let u = &self.u[start..start + 5];
-            // Newton divided differences of A: dd[k] ≈ A^(k)/k!.
-            let mut d = [
-                a_of(start),
-                a_of(start + 1),
-                a_of(start + 2),
-                a_of(start + 3),
-                a_of(start + 4),
-            ];
-            let mut dd = [d[0], 0.0, 0.0, 0.0, 0.0];
-            for level in 1..5 {
-                for i in 0..5 - level {
-                    d[i] = (d[i + 1] - d[i]) / (u[i + level] - u[i]);
-                }
-                dd[level] = d[0];
-            }
-            let a_der = [
-                a_of(2 * panel),
-                dd[1],
-                2.0 * dd[2],
-                6.0 * dd[3],
-                24.0 * dd[4],
-            ];
-            // P and its u-derivatives at the panel's first node.
+            let a: [f64; 5] = std::array::from_fn(|m| {
+                let j = start + m;
+                self.rho[j] * kern[j] * k2[j]
+            });
+            // Divided differences of A over the five nodes: f[u_s..u_{s+k}] ≈ A^(k)/k!.
+            let dd = |k: usize| -> f64 { self.dd[start][k - 1][..=k].iter().zip(&a).map(|(w, v)| w * v).sum() };
             let j = 2 * panel;
-            let gp = cg * self.w_at[j] * kern[j] * self.rho[j];
-            // G' ∝ e^{λu} locally: λ = d ln W/du + d ln(Kρ)/du across the panel's two nodes.
-            let lam = self.beta[panel]
-                + ((kern[j + 1] * self.rho[j + 1]) / (kern[j] * self.rho[j])).ln()
-                    / (self.u[j + 1] - self.u[j]);
-            let p_der = probability_derivatives(p0, g[j], gp, lam, p[j]);
+            let a_der = [
+                self.rho[j] * kern[j] * k2[j],
+                dd(1),
+                2.0 * dd(2),
+                6.0 * dd(3),
+                24.0 * dd(4),
+            ];
             let binom = [1.0, 4.0, 6.0, 4.0, 1.0];
-            let d4: f64 = (0..5).map(|k| binom[k] * a_der[4 - k] * p_der[k]).sum();
+            let pd = &p_der[panel];
+            let d4: f64 = (0..5).map(|k| binom[k] * a_der[4 - k] * pd[k]).sum();
             total += ERR_SAFETY * self.err4[panel] * d4.abs();
         }
         total
@@ -539,17 +548,6 @@ impl Graded {
         }
         near
     }
-}
-
-/// Fourth divided difference f[u0..u4].
-fn divided_difference4(u: &[f64], f: &[f64]) -> f64 {
-    let mut d = [f[0], f[1], f[2], f[3], f[4]];
-    for level in 1..5 {
-        for i in 0..5 - level {
-            d[i] = (d[i + 1] - d[i]) / (u[i + level] - u[i]);
-        }
-    }
-    d[0]
 }
 
 /// The d-independent part of the contact integrals for one spectrum; serves every thickness.
@@ -786,7 +784,7 @@ fn contact_probability_slope(p0: f64, g: f64) -> f64 {
     if g <= 0.0 {
         0.0
     } else {
-        p0 / (2.0 * PI.sqrt()) * g.powf(-1.5) * (-p0 * p0 / (4.0 * g)).exp()
+        p0 / (2.0 * PI.sqrt() * g * g.sqrt()) * (-p0 * p0 / (4.0 * g)).exp()
     }
 }
 
@@ -915,13 +913,15 @@ fn evaluate_on(
         // |dP/dG| times the cumulative G error, and dP/dG times the signed partial-integral error.
         let mut dp_cum = vec![0.0; n];
         let mut dp_part = vec![0.0; n];
+        // P and its first four u-derivatives at each panel's first node, for the error terms.
+        let mut p_der = vec![[0.0; 5]; grid.panels()];
         let mut g_left = near.g_raw;
         let mut g_left_err = near.g_raw_err;
         for (p, g_err) in g_errs.iter().enumerate().skip(from) {
             let (j0, j1) = (2 * p, 2 * p + 1);
             let start = j0.saturating_sub(1).min(n.saturating_sub(3));
             let psi2 = if n >= 3 {
-                second_difference(&grid.u[start..start + 3], &f[start..start + 3])
+                2.0 * grid.divided(start, 2, &f)
             } else {
                 0.0
             };
@@ -934,13 +934,18 @@ fn evaluate_on(
                 dp_cum[j] = slope * g_left_err;
                 dp_part[j] = slope * psi2 * grid.partial_curv[p][jj];
             }
+            // G' = cg W K ρ at the node, growing locally like e^{λu}: λ = d ln W/du + d ln(Kρ)/du
+            // across the panel's two nodes.
+            let gp = cg * grid.w_at[j0] * f[j0];
+            let lam = grid.beta[p] + (f[j1] / f[j0]).ln() / (grid.u[j1] - grid.u[j0]);
+            p_der[p] = probability_derivatives(p0, g_node[j0], gp, lam, p_node[j0]);
             g_left += grid.w[j0] * f[j0] + grid.w[j1] * f[j1];
             g_left_err += g_err;
         }
         let base = |k2: &[f64], acc: (f64, f64)| {
             let psi: Vec<f64> = (0..n).map(|j| kern[j] * p_node[j] * k2[j]).collect();
-            let (v, _) = grid.integrate_from(&psi, from);
-            let e = grid.product_errors(&kern, k2, &p_node, &g_node, p0, cg, from);
+            let v = grid.weighted_sum(&psi, from);
+            let e = grid.product_errors(&kern, k2, &p_der, from);
             let wt = |j: usize| grid.w[j] * grid.rho[j] * kern[j] * k2[j];
             let dp: f64 = (from..grid.panels())
                 .map(|p| {
@@ -996,13 +1001,6 @@ fn evaluate_on(
         kernel_evaluations: evaluations,
         interface_kernel_evaluations: 0,
     })
-}
-
-/// Second divided difference f[u0, u1, u2] times 2 (≈ f'').
-fn second_difference(u: &[f64], f: &[f64]) -> f64 {
-    let d01 = (f[1] - f[0]) / (u[1] - u[0]);
-    let d12 = (f[2] - f[1]) / (u[2] - u[1]);
-    2.0 * (d12 - d01) / (u[2] - u[0])
 }
 
 /// √v with the error of v propagated (d√v = dv / (2√v)), bounded by √dv near v = 0.
