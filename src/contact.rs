@@ -331,14 +331,20 @@ impl Grid {
             return 0.0;
         }
         let mut total = 0.0;
-        for panel in from..self.panels() {
+        for (panel, pd) in p_der.iter().enumerate().take(self.panels()).skip(from) {
             let start = (2 * panel).saturating_sub(2).max(lo).min(n - 5);
             let a: [f64; 5] = std::array::from_fn(|m| {
                 let j = start + m;
                 self.rho[j] * kern[j] * k2[j]
             });
             // Divided differences of A over the five nodes: f[u_s..u_{s+k}] ≈ A^(k)/k!.
-            let dd = |k: usize| -> f64 { self.dd[start][k - 1][..=k].iter().zip(&a).map(|(w, v)| w * v).sum() };
+            let dd = |k: usize| -> f64 {
+                self.dd[start][k - 1][..=k]
+                    .iter()
+                    .zip(&a)
+                    .map(|(w, v)| w * v)
+                    .sum()
+            };
             let j = 2 * panel;
             let a_der = [
                 self.rho[j] * kern[j] * k2[j],
@@ -348,7 +354,6 @@ impl Grid {
                 24.0 * dd(4),
             ];
             let binom = [1.0, 4.0, 6.0, 4.0, 1.0];
-            let pd = &p_der[panel];
             let d4: f64 = (0..5).map(|k| binom[k] * a_der[4 - k] * pd[k]).sum();
             total += ERR_SAFETY * self.err4[panel] * d4.abs();
         }
@@ -395,12 +400,12 @@ struct Near {
     tau: (f64, f64),
 }
 
-/// ∫_{-1}^{y} ℓ_k(x) dx for the Lagrange basis on `nodes`.
-fn lagrange_integral(nodes: &[f64], k: usize, y: f64) -> f64 {
-    let (x, w) = quad::gauss_legendre(nodes.len());
+/// ∫_{-1}^{y} ℓ_k(x) dx for the Lagrange basis on `nodes`, by the Gauss–Legendre rule (x, w)
+/// with as many nodes (exact for the degree-(n−1) basis).
+fn lagrange_integral(nodes: &[f64], (x, w): (&[f64], &[f64]), k: usize, y: f64) -> f64 {
     let half = 0.5 * (y + 1.0);
     x.iter()
-        .zip(&w)
+        .zip(w)
         .map(|(&xi, &wi)| {
             let t = -1.0 + half * (xi + 1.0);
             let l: f64 = nodes
@@ -453,10 +458,10 @@ impl Graded {
         let mut b5n = [[0.0; 6]; 5];
         for k in 0..6 {
             for j in 0..6 {
-                b6n[j][k] = lagrange_integral(&x6, k, x6[j]);
+                b6n[j][k] = lagrange_integral(&x6, (&x6, &gw6), k, x6[j]);
             }
             for j in 0..5 {
-                b5n[j][k] = lagrange_integral(&x6, k, x5[j]);
+                b5n[j][k] = lagrange_integral(&x6, (&x6, &gw6), k, x5[j]);
             }
         }
         let w_of = |q: f64| q.powi(4) * spectrum.c(q);
