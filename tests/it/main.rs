@@ -15,6 +15,7 @@ mod interface_ref;
 mod kernel_table;
 mod layer;
 mod psd_convert;
+mod psd_moments;
 mod psd_read;
 mod topography;
 mod validity;
