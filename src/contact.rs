@@ -22,11 +22,19 @@
 //! The kernels S⁻², f², g² at the nodes come from a [`KernelTable`] of the material pair (built
 //! once per engine and pair, checked against the exact forms to 2e−14 relative; the exact forms
 //! when no table resolves them), four times cheaper than the stable forms themselves.
+//! Interface tail: above q·d = 40 ([`X_FAR`]) f² and g² are below e^{−80}·O(x²) and decrease
+//! (`layer::KernelTable`'s far field). When the spectrum starts at q_L·d ≤ [`X_HEAD`] = 10, where
+//! F² is at least ~e^{−20}, the interface integrals stop at the first panel whose first node lies
+//! beyond 40, and the rest, at most F²(that node)·∫W K du with P ≤ 1, is added to their error
+//! estimate: e^{−60} relative times the ratio of ∫W du beyond and before. Where that is not
+//! below rtol/1000 of the rest (a band of roughness far beyond q·d = 40), the evaluation is
+//! repeated over the whole range. Films this thick evaluate f, g and P only where they matter; thicker ones, whose
+//! interface stresses are exponentially small everywhere, are integrated in full.
 //! If the estimate misses rtol, the evaluation is repeated on grids with panels halved, up to
 //! [`MAX_REFINE`] times, and reports `ToleranceNotReached` if it still misses.
 
 use crate::error::Error;
-use crate::layer::{Bilayer, KernelTable, Squared, Stack};
+use crate::layer::{Bilayer, KernelTable, Squared, Stack, X_FAR};
 use crate::prec::{EPS, Estimate, KERNEL_RTOL, Settings, Termination};
 use crate::psd::Spectrum;
 use crate::quad::{self, ExpGauss2};
@@ -292,11 +300,25 @@ impl Grid {
             .collect()
     }
 
-    /// Σ_j w_j ρ_j ψ_j over the panels from `from` on.
+    /// Σ_j w_j ρ_j ψ_j over the panels from `from` to the end of `psi`.
     fn weighted_sum(&self, psi: &[f64], from: usize) -> f64 {
-        (2 * from..self.q.len())
+        (2 * from..psi.len())
             .map(|j| self.w[j] * self.rho[j] * psi[j])
             .sum()
+    }
+
+    /// Σ_j w_j f_j over all panels for f = ρψ, with the panel error estimates already made.
+    fn sum_with_errors(&self, f: &[f64], errs: &[f64]) -> (f64, f64) {
+        let (mut sum, mut abs) = (0.0, 0.0);
+        // Panel by panel, in the order of `integrate_from` (E_eff's ratio of the two is exactly
+        // 1 where S = 1).
+        for p in 0..self.panels() {
+            let v = self.w[2 * p] * f[2 * p] + self.w[2 * p + 1] * f[2 * p + 1];
+            sum += v;
+            abs += v.abs();
+        }
+        let err: f64 = errs.iter().sum();
+        (sum, err + 8.0 * EPS * abs * (self.q.len() as f64).sqrt())
     }
 
     /// Σ_j w_j ρ_j ψ_j over the panels from `from` on, with its error estimate.
@@ -324,14 +346,21 @@ impl Grid {
     /// [`probability_derivatives`]) come from the chain rule with the analytic G-derivatives of
     /// erf(a/√G); Leibniz's rule gives (AP)⁗ and the Gauss error term err4·|(AP)⁗|, with the
     /// safety factor.
-    fn product_errors(&self, kern: &[f64], k2: &[f64], p_der: &[[f64; 5]], from: usize) -> f64 {
+    fn product_errors(
+        &self,
+        kern: &[f64],
+        k2: &[f64],
+        p_der: &[[f64; 5]],
+        from: usize,
+        to: usize,
+    ) -> f64 {
         let n = self.q.len();
         let lo = 2 * from;
         if n - lo < 5 {
             return 0.0;
         }
         let mut total = 0.0;
-        for (panel, pd) in p_der.iter().enumerate().take(self.panels()).skip(from) {
+        for (panel, pd) in p_der.iter().enumerate().take(to).skip(from) {
             let start = (2 * panel).saturating_sub(2).max(lo).min(n - 5);
             let a: [f64; 5] = std::array::from_fn(|m| {
                 let j = start + m;
@@ -566,6 +595,9 @@ pub struct Engine {
     table: Mutex<Option<Arc<KernelTable>>>,
 }
 
+/// The interface integrals are cut at q·d = [`X_FAR`] only when q_L·d is at most this (module doc).
+const X_HEAD: f64 = 10.0;
+
 /// How far (in ln(qd)) a rebuilt kernel table reaches beyond the range asked for, so that a
 /// thickness scan does not rebuild it at every step.
 const TABLE_MARGIN: f64 = 2.0;
@@ -707,7 +739,15 @@ impl Engine {
             if request.interface() {
                 interface += here;
             }
-            let mut c = evaluate_on(grid, graded, &kernels, stack, p0, request, evaluations)?;
+            // The interface tail is cut where its bound is below rtol/1000 of the rest; else
+            // (spectra whose weight lies far beyond q·d = 40) the whole range is integrated.
+            let cut_tol = 1e-3 * self.settings.rtol;
+            let on =
+                |cut| evaluate_on(grid, graded, &kernels, stack, p0, request, evaluations, cut);
+            let mut c = match on(Some(cut_tol))? {
+                Some(c) => c,
+                None => on(None)?.expect("no cut, no tail"),
+            };
             c.interface_kernel_evaluations = interface;
             add_rounding_floor(&mut c);
             let done = converged(&c, self.settings.rtol);
@@ -834,6 +874,9 @@ fn top_variance_half(p0: f64, g1: f64) -> f64 {
     g1 * erf(u) + 2.0 * a * a / PI.sqrt() * ((-u * u).exp() / u - PI.sqrt() * erfc(u))
 }
 
+/// One evaluation on one grid. With `cut = Some(tol)` the interface integrals stop at q·d = 40
+/// (module doc) and `None` is returned when the tail's bound exceeds tol times the rest.
+#[allow(clippy::too_many_arguments)]
 fn evaluate_on(
     grid: &Grid,
     graded: Option<&Graded>,
@@ -842,26 +885,39 @@ fn evaluate_on(
     p0: f64,
     req: Request,
     evaluations: usize,
-) -> Result<Contact, Error> {
+    cut: Option<f64>,
+) -> Result<Option<Contact>, Error> {
     let layers = &stack.layers;
     let d = stack.thickness;
     let e0 = layers.film.e_star();
     let cg = 0.25 * PI * e0 * e0;
     let n = grid.q.len();
     let need_fg = req.interface();
+    // Interface integrals stop at the first panel whose first node has q·d > X_FAR (module
+    // doc, "Interface tail"); f², g² are needed up to four nodes further for the differences.
+    let to = if need_fg && cut.is_some() && grid.q[0] * d <= X_HEAD {
+        let first_far = grid.q.partition_point(|&q| q * d <= X_FAR);
+        let from = graded.map_or(0, |g| g.base_from);
+        first_far.div_ceil(2).min(grid.panels()).max(from)
+    } else if need_fg {
+        grid.panels()
+    } else {
+        0
+    };
+    let n_fg = (2 * to + 5).min(n);
     let mut kern = vec![0.0; n];
     let mut f2 = if req.sigma_interface {
-        vec![0.0; n]
+        vec![0.0; n_fg]
     } else {
         vec![]
     };
     let mut g2 = if req.tau_interface {
-        vec![0.0; n]
+        vec![0.0; n_fg]
     } else {
         vec![]
     };
     for j in 0..n {
-        if need_fg {
+        if j < n_fg {
             let r = kernels.squared(grid.q[j], grid.u[j]);
             kern[j] = r.k;
             if req.sigma_interface {
@@ -880,7 +936,9 @@ fn evaluate_on(
             });
         }
     }
-    let (g_sum, g_err) = grid.integrate(&kern);
+    let f: Vec<f64> = kern.iter().zip(&grid.rho).map(|(k, r)| k * r).collect();
+    let g_errs = grid.panel_errors(&f, 0);
+    let (g_sum, g_err) = grid.sum_with_errors(&f, &g_errs);
     let g1 = Estimate::new(cg * g_sum, cg * g_err, Termination::Converged);
     let area = g1.map(
         |g| contact_probability(p0, g),
@@ -906,13 +964,11 @@ fn evaluate_on(
 
     let (mut sigma_rms_interface, mut tau_rms_interface) = (None, None);
     if let Some(graded) = graded {
-        let f: Vec<f64> = kern.iter().zip(&grid.rho).map(|(k, r)| k * r).collect();
         // The start of the range, where P(G(u)) ∝ (u − u_L)^{-1/2}: graded panels.
         let near = graded.integrate(kernels, p0, cg, req);
         // Then the two-node panels. First G and P at every node (forward pass: running sum plus
         // the panel's partial integral), with the error of P from the error of G.
         let from = graded.base_from;
-        let g_errs = grid.panel_errors(&f, 0);
         let mut p_node = vec![0.0; n];
         let mut g_node = vec![0.0; n];
         // |dP/dG| times the cumulative G error, and dP/dG times the signed partial-integral error.
@@ -922,7 +978,7 @@ fn evaluate_on(
         let mut p_der = vec![[0.0; 5]; grid.panels()];
         let mut g_left = near.g_raw;
         let mut g_left_err = near.g_raw_err;
-        for (p, g_err) in g_errs.iter().enumerate().skip(from) {
+        for (p, g_err) in g_errs.iter().enumerate().take(to).skip(from) {
             let (j0, j1) = (2 * p, 2 * p + 1);
             let start = j0.saturating_sub(1).min(n.saturating_sub(3));
             let psi2 = if n >= 3 {
@@ -947,12 +1003,16 @@ fn evaluate_on(
             g_left += grid.w[j0] * f[j0] + grid.w[j1] * f[j1];
             g_left_err += g_err;
         }
+        // Beyond the last panel P ≤ 1 and F² ≤ its value at the first node left out (f², g²
+        // decrease for q·d ≥ X_FAR), so the tail is at most F²(that node)·Σ w ρ K.
+        let tail_weight: f64 = (2 * to..n).map(|j| grid.w[j] * f[j]).sum();
         let base = |k2: &[f64], acc: (f64, f64)| {
-            let psi: Vec<f64> = (0..n).map(|j| kern[j] * p_node[j] * k2[j]).collect();
+            let psi: Vec<f64> = (0..2 * to).map(|j| kern[j] * p_node[j] * k2[j]).collect();
             let v = grid.weighted_sum(&psi, from);
-            let e = grid.product_errors(&kern, k2, &p_der, from);
+            let e = grid.product_errors(&kern, k2, &p_der, from, to);
+            let tail = k2.get(2 * to).map_or(0.0, |&k2c| k2c * tail_weight);
             let wt = |j: usize| grid.w[j] * grid.rho[j] * kern[j] * k2[j];
-            let dp: f64 = (from..grid.panels())
+            let dp: f64 = (from..to)
                 .map(|p| {
                     let (j0, j1) = (2 * p, 2 * p + 1);
                     wt(j0) * dp_cum[j0]
@@ -960,14 +1020,21 @@ fn evaluate_on(
                         + ERR_SAFETY * (wt(j0) * dp_part[j0] + wt(j1) * dp_part[j1]).abs()
                 })
                 .sum();
-            (acc.0 + v, acc.1 + e + dp)
+            (acc.0 + v, acc.1 + e + dp + tail, tail)
         };
         let (mut sig, mut tau) = (near.sigma, near.tau);
-        if req.sigma_interface {
-            sig = base(&f2, sig);
-        }
-        if req.tau_interface {
-            tau = base(&g2, tau);
+        let tol = cut.unwrap_or(f64::INFINITY);
+        for (want, k2, acc) in [
+            (req.sigma_interface, &f2, &mut sig),
+            (req.tau_interface, &g2, &mut tau),
+        ] {
+            if want {
+                let (v, e, tail) = base(k2, *acc);
+                if tail > tol * v {
+                    return Ok(None);
+                }
+                *acc = (v, e);
+            }
         }
         if req.sigma_interface {
             sigma_rms_interface = Some(sqrt_estimate(
@@ -993,7 +1060,7 @@ fn evaluate_on(
         sqrt_estimate(ratio, ratio_err, Termination::Converged)
     });
 
-    Ok(Contact {
+    Ok(Some(Contact {
         thickness: d,
         pressure: p0,
         g1,
@@ -1005,7 +1072,7 @@ fn evaluate_on(
         low_octave_share,
         kernel_evaluations: evaluations,
         interface_kernel_evaluations: 0,
-    })
+    }))
 }
 
 /// √v with the error of v propagated (d√v = dv / (2√v)), bounded by √dv near v = 0.

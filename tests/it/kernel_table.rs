@@ -129,3 +129,25 @@ fn exact_fallback_agrees_with_table() {
         );
     }
 }
+
+/// The engine's interface integrals stop at q·d = 40 and bound the rest by F² there (contact
+/// module doc): f² and g² must decrease from 40 on, for every material pair.
+#[test]
+fn interface_kernels_decrease_beyond_the_cut() {
+    for layers in pairs() {
+        let table = KernelTable::new(layers, 1.0, 1e3).unwrap();
+        let mut last = table.squared(40.0, 40f64.ln());
+        let mut x = 40.0;
+        while x < 340.0 {
+            x *= 1.01;
+            let t = table.squared(x, x.ln());
+            let r = layers.response(x);
+            assert!(t.f2 <= last.f2 && t.g2 <= last.g2, "{layers:?} at {x}");
+            assert!(
+                r.f * r.f <= last.f2 * (1.0 + 1e-13),
+                "{layers:?} exact f at {x}"
+            );
+            last = t;
+        }
+    }
+}
