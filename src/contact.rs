@@ -734,20 +734,20 @@ impl Engine {
         for level in 0..=MAX_REFINE {
             let grid = self.grid(level);
             let graded = request.interface().then(|| self.graded(level));
-            let here = grid.q.len() + graded.map_or(0, |g| g.evaluations());
-            evaluations += here;
-            if request.interface() {
-                interface += here;
-            }
+            evaluations += grid.q.len() + graded.map_or(0, |g| g.evaluations());
             // The interface tail is cut where its bound is below rtol/1000 of the rest; else
             // (spectra whose weight lies far beyond q·d = 40) the whole range is integrated.
             let cut_tol = 1e-3 * self.settings.rtol;
             let on =
                 |cut| evaluate_on(grid, graded, &kernels, stack, p0, request, evaluations, cut);
             let mut c = match on(Some(cut_tol))? {
-                Some(c) => c,
-                None => on(None)?.expect("no cut, no tail"),
+                Ok(c) => c,
+                Err(spent) => {
+                    interface += spent;
+                    on(None)?.expect("no cut, no tail")
+                }
             };
+            interface += c.interface_kernel_evaluations;
             c.interface_kernel_evaluations = interface;
             add_rounding_floor(&mut c);
             let done = converged(&c, self.settings.rtol);
@@ -875,7 +875,8 @@ fn top_variance_half(p0: f64, g1: f64) -> f64 {
 }
 
 /// One evaluation on one grid. With `cut = Some(tol)` the interface integrals stop at q·d = 40
-/// (module doc) and `None` is returned when the tail's bound exceeds tol times the rest.
+/// (module doc) and `Err(n)` is returned, n the interface kernel evaluations spent, when the
+/// tail's bound exceeds tol times the rest.
 #[allow(clippy::too_many_arguments)]
 fn evaluate_on(
     grid: &Grid,
@@ -886,7 +887,7 @@ fn evaluate_on(
     req: Request,
     evaluations: usize,
     cut: Option<f64>,
-) -> Result<Option<Contact>, Error> {
+) -> Result<Result<Contact, usize>, Error> {
     let layers = &stack.layers;
     let d = stack.thickness;
     let e0 = layers.film.e_star();
@@ -1031,7 +1032,7 @@ fn evaluate_on(
             if want {
                 let (v, e, tail) = base(k2, *acc);
                 if tail > tol * v {
-                    return Ok(None);
+                    return Ok(Err(n_fg + graded.evaluations()));
                 }
                 *acc = (v, e);
             }
@@ -1060,7 +1061,7 @@ fn evaluate_on(
         sqrt_estimate(ratio, ratio_err, Termination::Converged)
     });
 
-    Ok(Some(Contact {
+    Ok(Ok(Contact {
         thickness: d,
         pressure: p0,
         g1,
@@ -1071,7 +1072,12 @@ fn evaluate_on(
         e_eff_over_e_film,
         low_octave_share,
         kernel_evaluations: evaluations,
-        interface_kernel_evaluations: 0,
+        // Here: this grid's nodes that evaluated f, g (the caller adds up the grids tried).
+        interface_kernel_evaluations: if need_fg {
+            n_fg + graded.map_or(0, |g| g.evaluations())
+        } else {
+            0
+        },
     }))
 }
 

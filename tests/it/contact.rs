@@ -212,7 +212,11 @@ fn only_requested_quantities() {
         let c = engine.evaluate(&rubber_on_steel(1e-5), 1e5, req).unwrap();
         assert_eq!(c.interface_kernel_evaluations, 0);
     }
-    assert_eq!(all.interface_kernel_evaluations, all.kernel_evaluations);
+    // f, g only up to q·d = 40 (here q up to 4e6 of the spectrum's 1e5..1e8).
+    assert!(
+        all.interface_kernel_evaluations > 0
+            && all.interface_kernel_evaluations < all.kernel_evaluations
+    );
 }
 
 /// Fig. 7 statements: for q0 d ≫ 1 the interface stresses vanish; for q0 d ≲ 1/2 the interface
