@@ -21,7 +21,7 @@
 //! from the same rule's partial integrals (exact for ψ linear on the panel).
 //! The kernels S⁻², f², g² at the nodes come from a [`KernelTable`] of the material pair (built
 //! once per engine and pair, checked against the exact forms to 2e−14 relative; the exact forms
-//! when no table resolves them), four times cheaper than the stable forms themselves.
+//! when no table resolves them), two to four times cheaper than the stable forms themselves.
 //! Interface tail: above q·d = 40 ([`X_FAR`]) f² and g² are below e^{−80}·O(x²) and decrease
 //! (`layer::KernelTable`'s far field). When the spectrum starts at q_L·d ≤ [`X_HEAD`] = 10, where
 //! F² is at least ~e^{−20}, the interface integrals stop at the first panel whose first node lies
@@ -284,17 +284,16 @@ impl Grid {
         self.err4.len()
     }
 
-    /// Per-panel error estimates of Σ w ρ ψ from panel `from` on: the Gauss error term with ψ⁗
-    /// from the fourth divided difference of ρψ over five neighbouring nodes (all ≥ node 2·from).
-    fn panel_errors(&self, f: &[f64], from: usize) -> Vec<f64> {
+    /// Per-panel error estimates of Σ w f, f = ρψ: the Gauss error term with ψ⁗ from the fourth
+    /// divided difference of f over five neighbouring nodes.
+    fn panel_errors(&self, f: &[f64]) -> Vec<f64> {
         let n = self.q.len();
-        let lo = 2 * from;
         (0..self.panels())
             .map(|p| {
-                if p < from || n - lo < 5 {
+                if n < 5 {
                     return 0.0;
                 }
-                let start = (2 * p).saturating_sub(2).max(lo).min(n - 5);
+                let start = (2 * p).saturating_sub(2).min(n - 5);
                 ERR_SAFETY * self.err4[p] * (24.0 * self.divided(start, 4, f)).abs()
             })
             .collect()
@@ -307,11 +306,10 @@ impl Grid {
             .sum()
     }
 
-    /// Σ_j w_j f_j over all panels for f = ρψ, with the panel error estimates already made.
+    /// Σ_j w_j f_j over all panels for f = ρψ, panel by panel, with the panel error estimates
+    /// already made and the summation's rounding.
     fn sum_with_errors(&self, f: &[f64], errs: &[f64]) -> (f64, f64) {
         let (mut sum, mut abs) = (0.0, 0.0);
-        // Panel by panel, in the order of `integrate_from` (E_eff's ratio of the two is exactly
-        // 1 where S = 1).
         for p in 0..self.panels() {
             let v = self.w[2 * p] * f[2 * p] + self.w[2 * p + 1] * f[2 * p + 1];
             sum += v;
@@ -321,22 +319,10 @@ impl Grid {
         (sum, err + 8.0 * EPS * abs * (self.q.len() as f64).sqrt())
     }
 
-    /// Σ_j w_j ρ_j ψ_j over the panels from `from` on, with its error estimate.
-    fn integrate_from(&self, psi: &[f64], from: usize) -> (f64, f64) {
-        let f: Vec<f64> = psi.iter().zip(&self.rho).map(|(p, r)| p * r).collect();
-        let mut sum = 0.0;
-        let mut abs = 0.0;
-        for p in from..self.panels() {
-            let v = self.w[2 * p] * f[2 * p] + self.w[2 * p + 1] * f[2 * p + 1];
-            sum += v;
-            abs += v.abs();
-        }
-        let err: f64 = self.panel_errors(&f, from).iter().sum();
-        (sum, err + 8.0 * EPS * abs * (self.q.len() as f64).sqrt())
-    }
-
+    /// Σ_j w_j ρ_j ψ_j over all panels with its error estimate.
     fn integrate(&self, psi: &[f64]) -> (f64, f64) {
-        self.integrate_from(psi, 0)
+        let f: Vec<f64> = psi.iter().zip(&self.rho).map(|(p, r)| p * r).collect();
+        self.sum_with_errors(&f, &self.panel_errors(&f))
     }
 
     /// Error estimate of Σ w ρ K k2 P from panel `from` on, where P = P(G(u)) has kinks in its
@@ -938,7 +924,7 @@ fn evaluate_on(
         }
     }
     let f: Vec<f64> = kern.iter().zip(&grid.rho).map(|(k, r)| k * r).collect();
-    let g_errs = grid.panel_errors(&f, 0);
+    let g_errs = grid.panel_errors(&f);
     let (g_sum, g_err) = grid.sum_with_errors(&f, &g_errs);
     let g1 = Estimate::new(cg * g_sum, cg * g_err, Termination::Converged);
     let area = g1.map(
