@@ -8,26 +8,14 @@ use coatcheck::contact::{Engine, Request};
 use coatcheck::layer::{Bilayer, Elastic, Stack};
 use coatcheck::prec::Settings;
 use std::hint::black_box;
-use std::time::Instant;
+
+#[path = "common/timing.rs"]
+mod timing;
+use timing::median_us;
 
 #[path = "../tests/it/fixtures.rs"]
 mod fixtures;
 use fixtures::measured_like;
-
-fn median_us(mut f: impl FnMut(), reps: usize) -> f64 {
-    for _ in 0..reps / 10 + 1 {
-        f();
-    }
-    let mut t: Vec<f64> = (0..reps)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64() * 1e6
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[reps / 2]
-}
 
 fn main() {
     let spectrum = measured_like(1000);
@@ -65,16 +53,13 @@ fn main() {
                 .flatten()
                 .map(|e| e.rel_err())
                 .fold(0.0, f64::max);
-                let t = median_us(
-                    || {
-                        black_box(
-                            engine
-                                .evaluate(black_box(&stack), 1e5, req)
-                                .expect("evaluates"),
-                        );
-                    },
-                    201,
-                );
+                let t = median_us(201, || {
+                    black_box(
+                        engine
+                            .evaluate(black_box(&stack), 1e5, req)
+                            .expect("evaluates"),
+                    );
+                });
                 println!(
                     "{rtol:>8.0e} {:>10.1} {name:>16} {t:>12.1} {:>12} {worst:>12.1e}",
                     d * 1e6,
@@ -83,19 +68,16 @@ fn main() {
             }
         }
     }
-    let t = median_us(
-        || {
-            black_box(
-                Engine::new(black_box(&spectrum), Settings::default())
-                    .evaluate(
-                        &Stack::new(pair, 20e-6).expect("valid"),
-                        1e5,
-                        Request::all(),
-                    )
-                    .expect("evaluates"),
-            );
-        },
-        51,
-    );
+    let t = median_us(51, || {
+        black_box(
+            Engine::new(black_box(&spectrum), Settings::default())
+                .evaluate(
+                    &Stack::new(pair, 20e-6).expect("valid"),
+                    1e5,
+                    Request::all(),
+                )
+                .expect("evaluates"),
+        );
+    });
     println!("engine construction + one full evaluation (rtol 1e-8, d = 20 um): {t:.1} us");
 }

@@ -15,21 +15,11 @@ use coatcheck::prec::Settings;
 use coatcheck::psd::Spectrum;
 use coatcheck::psd::read::{ReadOptions, read_spectrum};
 use std::hint::black_box;
-use std::path::PathBuf;
-use std::time::Instant;
 
-fn median_us(reps: usize, mut f: impl FnMut()) -> f64 {
-    f();
-    let mut t: Vec<f64> = (0..reps)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64() * 1e6
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[reps / 2]
-}
+#[path = "common/timing.rs"]
+mod timing;
+use std::path::PathBuf;
+use timing::median_us;
 
 fn main() {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/measured-rolloff.csv");
