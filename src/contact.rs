@@ -22,14 +22,17 @@
 //! The kernels S⁻², f², g² at the nodes come from a [`KernelTable`] of the material pair (built
 //! once per engine and pair, checked against the exact forms to 2e−14 relative; the exact forms
 //! when no table resolves them), two to four times cheaper than the stable forms themselves.
-//! Interface tail: above q·d = 40 ([`X_FAR`]) f² and g² are below e^{−80}·O(x²) and decrease
-//! (`layer::KernelTable`'s far field). When the spectrum starts at q_L·d ≤ [`X_HEAD`] = 10, where
-//! F² is at least ~e^{−20}, the interface integrals stop at the first panel whose first node lies
-//! beyond 40, and the rest, at most F²(that node)·∫W K du with P ≤ 1, is added to their error
-//! estimate: e^{−60} relative times the ratio of ∫W du beyond and before. Where that is not
-//! below rtol/1000 of the rest (a band of roughness far beyond q·d = 40), the evaluation is
-//! repeated over the whole range. Films this thick evaluate f, g and P only where they matter; thicker ones, whose
-//! interface stresses are exponentially small everywhere, are integrated in full.
+//! Interface tail: above q·d = 20 f e^x and g e^x are linear in x to 1e−15 (the far field of
+//! `layer::KernelTable`: the stable forms' e^{−2x} terms are below x²e^{−2x} < 2e−15 there), and
+//! (a + bx)e^{−x} with a/b ≥ 0 decreases for x > 1: f² and g² decrease. The interface integrals
+//! stop at the first panel whose first node lies beyond x_c = max(20, q_L·d + m), and the rest,
+//! at most F²(that node)·∫W K du with P ≤ 1, is added to their error estimate: about
+//! x_c²e^{−2m} relative times the ratio of ∫W K du beyond to ∫W K F² du before, which the margin
+//! m = ½ ln(10¹⁰/tol) keeps below tol = rtol/1000 for ratios up to ~10⁴. This is done when
+//! x_c ≤ 40; where the bound is not below rtol/1000 of the rest (a band of roughness far beyond
+//! x_c), the evaluation is repeated over the whole range. Films this thick evaluate f, g and P
+//! only where they matter; thicker ones, whose interface stresses are exponentially small
+//! everywhere, are integrated in full.
 //! If the estimate misses rtol, the evaluation is repeated on grids with panels halved, up to
 //! [`MAX_REFINE`] times, and reports `ToleranceNotReached` if it still misses.
 
@@ -373,24 +376,52 @@ impl Grid {
     }
 }
 
-/// How far the graded region reaches above q_L, in panel widths (the two-node rule is used
-/// only where a panel is narrower than 1/64 of its distance to q_L).
-const GRADED_SPAN: f64 = 64.0;
+/// Relative error of the n-point Gauss–Legendre rule on ∫ x^{-1/2} dx over a panel at ρ times
+/// its width from the singular point, ≈ C_n (2ρ + 1)^{−2n}: C_n fitted to 30-digit evaluations for
+/// n = 2..5 at ρ = 1..64 (within a factor 2 there). P(G(u)) behaves so near q_L.
+fn graded_rule_error(n: usize, rho: f64) -> f64 {
+    const C: [f64; 6] = [0.0, 0.0, 0.024, 5.2e-3, 1.2e-3, 2.9e-4];
+    C[n.min(5)] * (2.0 * rho + 1.0).powi(-2 * n as i32)
+}
+
+/// The per-panel share of rtol a graded-region panel's (or the first base panels') error may
+/// take: their errors add up over panels whose integrals are each a small part of the total.
+const GRADED_SHARE: f64 = 0.05;
+
+/// How far the graded region reaches above q_L, in panel widths: where the two-node base rule's
+/// error on the x^{-1/2} behaviour falls below [`GRADED_SHARE`]·rtol (at most 64 widths).
+fn graded_span(rtol: f64) -> f64 {
+    (1..=64)
+        .map(f64::from)
+        .find(|&rho| graded_rule_error(2, rho) <= GRADED_SHARE * rtol)
+        .unwrap_or(64.0)
+}
+
+/// Nodes of a graded panel at ρ times its width from q_L: the fewest (3, 4 or 6) whose companion
+/// rule (one node fewer, the error estimate) meets [`GRADED_SHARE`]·rtol.
+fn graded_nodes(rho: f64, rtol: f64) -> usize {
+    [3, 4]
+        .into_iter()
+        .find(|&n| graded_rule_error(n - 1, rho) <= GRADED_SHARE * rtol)
+        .unwrap_or(6)
+}
 /// Width (in ln q) of the innermost piece above q_L, done in closed form.
 const INNER_WIDTH: f64 = 1e-11;
 
-/// One 6-point Gauss–Legendre panel of the graded region, with a 5-point companion rule for
-/// the error estimate. Weights include W = q⁴C at the node; `b6`, `b5` integrate the
-/// 6-node interpolant of the G integrand from the panel's left end to each node.
+/// One n-point Gauss–Legendre panel of the graded region (n ≤ 6), with an (n−1)-point companion
+/// rule for the error estimate. Weights include W = q⁴C at the node; `b`, `bc` integrate the
+/// n-node interpolant of the G integrand from the panel's left end to each node. Only the first
+/// n (n − 1) entries are used.
 struct GlPanel {
-    q6: [f64; 6],
-    u6: [f64; 6],
-    u5: [f64; 5],
-    w6: [f64; 6],
-    b6: [[f64; 6]; 6],
-    q5: [f64; 5],
-    w5: [f64; 5],
-    b5: [[f64; 6]; 5],
+    n: usize,
+    q: [f64; 6],
+    u: [f64; 6],
+    w: [f64; 6],
+    b: [[f64; 6]; 6],
+    qc: [f64; 5],
+    uc: [f64; 5],
+    wc: [f64; 5],
+    bc: [[f64; 6]; 5],
 }
 
 /// The interface quadrature near q_L, where P(G(u)) ∝ (u − u_L)^{-1/2} once G ≫ p0²: panels
@@ -461,14 +492,14 @@ fn lagrange_integral(nodes: &[f64], (x, w): (&[f64], &[f64]), k: usize, y: f64) 
 }
 
 impl Graded {
-    fn new(spectrum: &Spectrum, grid: &Grid, h: f64) -> Graded {
+    fn new(spectrum: &Spectrum, grid: &Grid, h: f64, rtol: f64) -> Graded {
         let q_l = spectrum.q_low();
         let u0 = q_l.ln();
         let u_end = spectrum.support().1.ln();
         // The two-node rule takes over where panels are narrower than 1/64 of their distance to q_L.
         let first = grid.width.first().copied().unwrap_or(h).min(h);
         let base_from = (0..grid.panels())
-            .find(|&p| grid.left[p] - u0 >= GRADED_SPAN * first.max(grid.width[p]))
+            .find(|&p| grid.left[p] - u0 >= graded_span(rtol) * first.max(grid.width[p]))
             .unwrap_or(grid.panels());
         let span = if base_from < grid.panels() {
             grid.left[base_from] - u0
@@ -492,42 +523,77 @@ impl Graded {
         );
         ends.sort_by(f64::total_cmp);
         ends.dedup_by(|a, b| (*a - *b).abs() <= 1e-14 * b.abs());
-        let (x6, gw6) = quad::gauss_legendre(6);
-        let (x5, gw5) = quad::gauss_legendre(5);
-        let mut b6n = [[0.0; 6]; 6];
-        let mut b5n = [[0.0; 6]; 5];
-        for k in 0..6 {
-            for j in 0..6 {
-                b6n[j][k] = lagrange_integral(&x6, (&x6, &gw6), k, x6[j]);
-            }
-            for j in 0..5 {
-                b5n[j][k] = lagrange_integral(&x6, (&x6, &gw6), k, x5[j]);
-            }
-        }
+        // Gauss–Legendre rules with 2..6 nodes, and the partial-integral matrices of the n-node
+        // interpolant at the n nodes and at the n − 1 companion nodes.
+        let rules: Vec<(Vec<f64>, Vec<f64>)> = (0..=6).map(quad::gauss_legendre).collect();
+        let partials = |n: usize, at: &[f64]| -> [[f64; 6]; 6] {
+            let (x, w) = (&rules[n].0, &rules[n].1);
+            std::array::from_fn(|j| {
+                std::array::from_fn(|k| match (at.get(j), k < n) {
+                    (Some(&y), true) => lagrange_integral(x, (x, w), k, y),
+                    _ => 0.0,
+                })
+            })
+        };
+        let bn: Vec<[[f64; 6]; 6]> = (0..=6)
+            .map(|n| {
+                if n < 2 {
+                    [[0.0; 6]; 6]
+                } else {
+                    partials(n, &rules[n].0)
+                }
+            })
+            .collect();
+        let bcn: Vec<[[f64; 6]; 6]> = (0..=6)
+            .map(|n| {
+                if n < 2 {
+                    [[0.0; 6]; 6]
+                } else {
+                    partials(n, &rules[n - 1].0)
+                }
+            })
+            .collect();
         let w_of = |q: f64| q.powi(4) * spectrum.c(q);
-        let gl_panel = |a: f64, b: f64| {
+        let gl_panel = |a: f64, b: f64, n: usize| {
             let half = 0.5 * (b - a);
             let at = |x: f64| q_l * (a + half * (x + 1.0)).exp();
-            let q6: [f64; 6] = std::array::from_fn(|k| at(x6[k]));
-            let q5: [f64; 5] = std::array::from_fn(|k| at(x5[k]));
-            let wq6: [f64; 6] = std::array::from_fn(|k| w_of(q6[k]));
+            let (x, gw) = (&rules[n].0, &rules[n].1);
+            let (xc, gwc) = (&rules[n - 1].0, &rules[n - 1].1);
+            let q: [f64; 6] = std::array::from_fn(|k| x.get(k).map_or(q_l, |&x| at(x)));
+            let qc: [f64; 5] = std::array::from_fn(|k| xc.get(k).map_or(q_l, |&x| at(x)));
+            let wq: [f64; 6] = std::array::from_fn(|k| if k < n { w_of(q[k]) } else { 0.0 });
+            let wqc: [f64; 5] = std::array::from_fn(|k| if k < n - 1 { w_of(qc[k]) } else { 0.0 });
             GlPanel {
-                q6,
-                u6: q6.map(f64::ln),
-                u5: q5.map(f64::ln),
-                w6: std::array::from_fn(|k| gw6[k] * half * wq6[k]),
-                b6: std::array::from_fn(|j| std::array::from_fn(|k| b6n[j][k] * half * wq6[k])),
-                q5,
-                w5: std::array::from_fn(|k| gw5[k] * half * w_of(q5[k])),
-                b5: std::array::from_fn(|j| std::array::from_fn(|k| b5n[j][k] * half * wq6[k])),
+                n,
+                q,
+                u: q.map(f64::ln),
+                w: std::array::from_fn(|k| gw.get(k).map_or(0.0, |g| g * half * wq[k])),
+                b: std::array::from_fn(|j| std::array::from_fn(|k| bn[n][j][k] * half * wq[k])),
+                qc,
+                uc: qc.map(f64::ln),
+                wc: std::array::from_fn(|k| gwc.get(k).map_or(0.0, |g| g * half * wqc[k])),
+                bc: std::array::from_fn(|j| std::array::from_fn(|k| bcn[n][j][k] * half * wq[k])),
             }
         };
-        let panels: Vec<GlPanel> = ends.windows(2).map(|p| gl_panel(p[0], p[1])).collect();
+        // Panels touching q_L's halving sequence (ρ < 4) keep 6 nodes; the knot-split panels
+        // further out need fewer.
+        let panels: Vec<GlPanel> = ends
+            .windows(2)
+            .map(|p| {
+                let rho = p[0] / (p[1] - p[0]);
+                let n = if rho < 4.0 {
+                    6
+                } else {
+                    graded_nodes(rho, rtol)
+                };
+                gl_panel(p[0], p[1], n)
+            })
+            .collect();
         let first_end = grid.width.first().copied().unwrap_or(span).min(span);
         let merged = ends[1..]
             .iter()
             .take_while(|&&r| r <= first_end)
-            .map(|&r| (r, gl_panel(0.0, r)))
+            .map(|&r| (r, gl_panel(0.0, r, 6)))
             .collect();
         let w_at_l = w_of(q_l);
         let slope = (w_of(q_l * first_end.exp()) / w_at_l).ln() / first_end;
@@ -594,28 +660,39 @@ impl Graded {
         req: Request,
     ) {
         {
-            let e6: [(f64, f64, f64); 6] = std::array::from_fn(|k| kf(panel.q6[k], panel.u6[k]));
-            let e5: [(f64, f64, f64); 5] = std::array::from_fn(|k| kf(panel.q5[k], panel.u5[k]));
-            let g6: f64 = (0..6).map(|k| panel.w6[k] * e6[k].0).sum();
-            let g5: f64 = (0..5).map(|k| panel.w5[k] * e5[k].0).sum();
-            let p6: [f64; 6] = std::array::from_fn(|j| {
-                contact_probability(
-                    p0,
-                    cg * (near.g_raw + (0..6).map(|k| panel.b6[j][k] * e6[k].0).sum::<f64>()),
-                )
-            });
-            let p5: [f64; 5] = std::array::from_fn(|j| {
-                contact_probability(
-                    p0,
-                    cg * (near.g_raw + (0..6).map(|k| panel.b5[j][k] * e6[k].0).sum::<f64>()),
-                )
-            });
+            let n = panel.n;
+            let mut e6 = [(0.0, 0.0, 0.0); 6];
+            let mut e5 = [(0.0, 0.0, 0.0); 5];
+            for (e, (&q, &u)) in e6.iter_mut().zip(panel.q.iter().zip(&panel.u)).take(n) {
+                *e = kf(q, u);
+            }
+            for (e, (&q, &u)) in e5
+                .iter_mut()
+                .zip(panel.qc.iter().zip(&panel.uc))
+                .take(n - 1)
+            {
+                *e = kf(q, u);
+            }
+            let g6: f64 = (0..n).map(|k| panel.w[k] * e6[k].0).sum();
+            let g5: f64 = (0..n - 1).map(|k| panel.wc[k] * e5[k].0).sum();
+            let mut p6 = [0.0; 6];
+            let mut p5 = [0.0; 5];
+            let at = |row: &[f64; 6]| {
+                let partial: f64 = row.iter().zip(&e6).take(n).map(|(b, e)| b * e.0).sum();
+                contact_probability(p0, cg * (near.g_raw + partial))
+            };
+            for (p, row) in p6.iter_mut().zip(&panel.b).take(n) {
+                *p = at(row);
+            }
+            for (p, row) in p5.iter_mut().zip(&panel.bc).take(n - 1) {
+                *p = at(row);
+            }
             let add = |acc: &mut (f64, f64), pick: fn(&(f64, f64, f64)) -> f64| {
-                let i6: f64 = (0..6)
-                    .map(|k| panel.w6[k] * e6[k].0 * p6[k] * pick(&e6[k]))
+                let i6: f64 = (0..n)
+                    .map(|k| panel.w[k] * e6[k].0 * p6[k] * pick(&e6[k]))
                     .sum();
-                let i5: f64 = (0..5)
-                    .map(|k| panel.w5[k] * e5[k].0 * p5[k] * pick(&e5[k]))
+                let i5: f64 = (0..n - 1)
+                    .map(|k| panel.wc[k] * e5[k].0 * p5[k] * pick(&e5[k]))
                     .sum();
                 acc.0 += i6;
                 acc.1 += (i6 - i5).abs() + 8.0 * EPS * i6.abs();
@@ -628,7 +705,7 @@ impl Graded {
             }
             near.g_raw += g6;
             near.g_raw_err += (g6 - g5).abs();
-            near.evaluations += 11;
+            near.evaluations += 2 * n - 1;
         }
     }
 }
@@ -644,8 +721,9 @@ pub struct Engine {
     table: Mutex<Option<Arc<KernelTable>>>,
 }
 
-/// The interface integrals are cut at q·d = [`X_FAR`] only when q_L·d is at most this (module doc).
-const X_HEAD: f64 = 10.0;
+/// Where f² and g² are known to decrease, the lowest q·d at which the interface integrals are
+/// cut (module doc).
+const X_CUT: f64 = 20.0;
 
 /// How far (in ln(qd)) a rebuilt kernel table reaches beyond the range asked for, so that a
 /// thickness scan does not rebuild it at every step.
@@ -752,6 +830,8 @@ impl Engine {
                 &self.spectrum,
                 self.grid(level),
                 panel_width(self.settings.rtol) / (1 << level) as f64,
+                // Each level halves the base panels: their error falls 16-fold.
+                self.settings.rtol / 16f64.powi(level as i32),
             )
         })
     }
@@ -993,10 +1073,13 @@ fn evaluate_on(
     let cg = 0.25 * PI * e0 * e0;
     let n = grid.q.len();
     let need_fg = req.interface();
-    // Interface integrals stop at the first panel whose first node has q·d > X_FAR (module
+    // Interface integrals stop at the first panel whose first node has q·d > x_c (module
     // doc, "Interface tail"); f², g² are needed up to four nodes further for the differences.
-    let to = if need_fg && cut.is_some() && grid.q[0] * d <= X_HEAD {
-        let first_far = grid.q.partition_point(|&q| q * d <= X_FAR);
+    let x_cut = cut.map_or(f64::INFINITY, |tol| {
+        (grid.q[0] * d + 0.5 * (1e10 / tol).ln()).max(X_CUT)
+    });
+    let to = if need_fg && x_cut <= X_FAR {
+        let first_far = grid.q.partition_point(|&q| q * d <= x_cut);
         let from = graded.map_or(0, |g| g.base_from);
         first_far.div_ceil(2).min(grid.panels()).max(from)
     } else if need_fg {
@@ -1119,7 +1202,7 @@ fn evaluate_on(
             g_left_err += g_err;
         }
         // Beyond the last panel P ≤ 1 and F² ≤ its value at the first node left out (f², g²
-        // decrease for q·d ≥ X_FAR), so the tail is at most F²(that node)·Σ w ρ K.
+        // decrease for q·d ≥ X_CUT), so the tail is at most F²(that node)·Σ w ρ K.
         let tail_weight: f64 = (2 * to..n).map(|j| grid.w[j] * f[j]).sum();
         let base = |k2: &[f64], acc: (f64, f64)| {
             let v: f64 = (2 * from..2 * to)
