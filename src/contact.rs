@@ -25,19 +25,15 @@
 //! Interface tail: above q·d = 20 f e^x and g e^x are linear in x to 1e−15 (the far field of
 //! `layer::KernelTable`: the stable forms' e^{−2x} terms are below x²e^{−2x} < 2e−15 there), and
 //! (a + bx)e^{−x} with a/b ≥ 0 decreases for x > 1: f² and g² decrease. The interface integrals
-//! stop at the first panel whose first node lies beyond x_c = max(20, q_L·d + m), and the rest,
-//! at most F²(that node)·∫W K du with P ≤ 1, is added to their error estimate: about
-//! x_c²e^{−2m} relative times the ratio of ∫W K du beyond to ∫W K F² du before, which the margin
-//! m = ½ ln(10¹⁰/tol) keeps below tol = rtol/1000 for ratios up to ~10⁴. This is done when
-//! x_c ≤ 40; where the bound is not below rtol/1000 of the rest (a band of roughness far beyond
-//! x_c), the evaluation is repeated over the whole range. Films this thick evaluate f, g and P
-//! only where they matter; thicker ones, whose interface stresses are exponentially small
-//! everywhere, are integrated in full.
+//! stop at the first panel whose first node has q·d ≥ 20 and F²(node)·∫W K du beyond it (a bound
+//! on the rest, P ≤ 1) below tol = rtol/1000 times A·∫W K F² du before it (a lower bound on the
+//! integral so far, since P ≥ P(G1) = A everywhere); that bound is added to their error estimate.
+//! The cut adapts to the film and the spectrum: f, g and P are evaluated only where they matter.
 //! If the estimate misses rtol, the evaluation is repeated on grids with panels halved, up to
 //! [`MAX_REFINE`] times, and reports `ToleranceNotReached` if it still misses.
 
 use crate::error::Error;
-use crate::layer::{Bilayer, KernelTable, Squared, Stack, X_FAR};
+use crate::layer::{Bilayer, KernelTable, Squared, Stack};
 use crate::prec::{EPS, Estimate, KERNEL_RTOL, Settings, Termination};
 use crate::psd::Spectrum;
 use crate::quad::{self, ExpGauss2};
@@ -786,6 +782,18 @@ impl Kernels<'_> {
         }
     }
 
+    /// f², g² at the node.
+    #[inline]
+    fn interface(&self, q: f64, u: f64) -> (f64, f64) {
+        match *self {
+            Kernels::Table { table, d, ln_d } => table.interface(q * d, u + ln_d),
+            Kernels::Exact { layers, d } => {
+                let r = layers.response(q * d);
+                (r.f * r.f, r.g * r.g)
+            }
+        }
+    }
+
     #[inline]
     fn squared(&self, q: f64, u: f64) -> Squared {
         match *self {
@@ -898,31 +906,21 @@ impl Engine {
             let grid = self.grid(level);
             let graded = request.interface().then(|| self.graded(level));
             evaluations += grid.q.len();
-            // The interface tail is cut where its bound is below rtol/1000 of the rest; else
-            // (spectra whose weight lies far beyond q·d = 40) the whole range is integrated.
-            let cut_tol = 1e-3 * self.settings.rtol;
-            let on = |cut| {
-                SCRATCH.with_borrow_mut(|s| {
-                    evaluate_on(
-                        grid,
-                        graded,
-                        &kernels,
-                        stack,
-                        p0,
-                        request,
-                        evaluations,
-                        cut,
-                        s,
-                    )
-                })
-            };
-            let mut c = match on(Some(cut_tol))? {
-                Ok(c) => c,
-                Err(spent) => {
-                    interface += spent;
-                    on(None)?.expect("no cut, no tail")
-                }
-            };
+            // The interface tail is cut where its bound is below rtol/1000 of the rest.
+            let tol = 1e-3 * self.settings.rtol;
+            let mut c = SCRATCH.with_borrow_mut(|s| {
+                evaluate_on(
+                    grid,
+                    graded,
+                    &kernels,
+                    stack,
+                    p0,
+                    request,
+                    evaluations,
+                    tol,
+                    s,
+                )
+            })?;
             interface += c.interface_kernel_evaluations;
             c.interface_kernel_evaluations = interface;
             evaluations = c.kernel_evaluations;
@@ -1007,6 +1005,7 @@ struct Scratch {
     dp_cum: Vec<f64>,
     dp_part: Vec<f64>,
     p_der: Vec<[f64; 5]>,
+    suffix: Vec<f64>,
 }
 
 thread_local! {
@@ -1086,9 +1085,8 @@ fn top_variance_half(p0: f64, g1: f64) -> f64 {
     g1 * erf(u) + 2.0 * a * a / PI.sqrt() * ((-u * u).exp() / u - PI.sqrt() * erfc(u))
 }
 
-/// One evaluation on one grid. With `cut = Some(tol)` the interface integrals stop at q·d = 40
-/// (module doc) and `Err(n)` is returned, n the interface kernel evaluations spent, when the
-/// tail's bound exceeds tol times the rest.
+/// One evaluation on one grid. The interface integrals stop where their tail's bound is below
+/// `tol` times the rest (module doc, "Interface tail").
 #[allow(clippy::too_many_arguments)]
 fn evaluate_on(
     grid: &Grid,
@@ -1098,30 +1096,15 @@ fn evaluate_on(
     p0: f64,
     req: Request,
     evaluations: usize,
-    cut: Option<f64>,
+    tol: f64,
     scratch: &mut Scratch,
-) -> Result<Result<Contact, usize>, Error> {
+) -> Result<Contact, Error> {
     let layers = &stack.layers;
     let d = stack.thickness;
     let e0 = layers.film.e_star();
     let cg = 0.25 * PI * e0 * e0;
     let n = grid.q.len();
     let need_fg = req.interface();
-    // Interface integrals stop at the first panel whose first node has q·d > x_c (module
-    // doc, "Interface tail"); f², g² are needed up to four nodes further for the differences.
-    let x_cut = cut.map_or(f64::INFINITY, |tol| {
-        (grid.q[0] * d + 0.5 * (1e10 / tol).ln()).max(X_CUT)
-    });
-    let to = if need_fg && x_cut <= X_FAR {
-        let first_far = grid.q.partition_point(|&q| q * d <= x_cut);
-        let from = graded.map_or(0, |g| g.base_from);
-        first_far.div_ceil(2).min(grid.panels()).max(from)
-    } else if need_fg {
-        grid.panels()
-    } else {
-        0
-    };
-    let n_fg = (2 * to + 5).min(n);
     let Scratch {
         kern,
         f2,
@@ -1133,29 +1116,18 @@ fn evaluate_on(
         dp_cum,
         dp_part,
         p_der,
+        suffix,
     } = scratch;
-    refill(kern, n, 0.0);
-    refill(f2, if req.sigma_interface { n_fg } else { 0 }, 0.0);
-    refill(g2, if req.tau_interface { n_fg } else { 0 }, 0.0);
-    for j in 0..n {
-        if j < n_fg {
-            let r = kernels.squared(grid.q[j], grid.u[j]);
-            kern[j] = r.k;
-            if req.sigma_interface {
-                f2[j] = r.f2;
-            }
-            if req.tau_interface {
-                g2[j] = r.g2;
-            }
-        } else {
-            kern[j] = kernels.k(grid.q[j], grid.u[j]);
-        }
-        if !kern[j].is_finite() {
+    kern.clear();
+    for (&q, &u) in grid.q.iter().zip(&grid.u) {
+        let k = kernels.k(q, u);
+        if !k.is_finite() {
             return Err(Error::Numerical {
                 what: "layer response",
-                detail: format!("S(qd) = 0 at qd = {:e}", grid.q[j] * d),
+                detail: format!("S(qd) = 0 at qd = {:e}", q * d),
             });
         }
+        kern.push(k);
     }
     f.clear();
     f.extend(kern.iter().zip(&grid.rho).map(|(k, r)| k * r));
@@ -1185,7 +1157,7 @@ fn evaluate_on(
     });
 
     let (mut sigma_rms_interface, mut tau_rms_interface) = (None, None);
-    let mut near_evaluations = 0;
+    let (mut near_evaluations, mut n_fg) = (0, 0);
     if let Some(graded) = graded {
         // The start of the range, where P(G(u)) ∝ (u − u_L)^{-1/2}: graded panels, unless G stays
         // below (p0/2)²/GRADED_SKIP over their region (P flat there; the base grid's estimates
@@ -1197,6 +1169,53 @@ fn evaluate_on(
             (graded.integrate(kernels, p0, cg, req), graded.base_from)
         };
         near_evaluations = near.evaluations;
+        // f², g² in ascending q, until the first panel from `from` on whose first node has
+        // q·d ≥ X_CUT and whose tail bound, F²(node)·Σ_{j ≥ node} w_j f_j (P ≤ 1, F² decreasing),
+        // is below tol·A·Σ_{j < node} w_j f_j F²_j for each F asked for: P ≥ P(G1) = A at every
+        // node, so that is at most tol times the integral before the cut. Then four more nodes
+        // for the divided differences.
+        refill(suffix, n + 1, 0.0);
+        for j in (0..n).rev() {
+            suffix[j] = suffix[j + 1] + grid.w[j] * f[j];
+        }
+        refill(f2, if req.sigma_interface { n } else { 0 }, 0.0);
+        refill(g2, if req.tau_interface { n } else { 0 }, 0.0);
+        let mut to = grid.panels();
+        let mut before = [0.0; 2];
+        for j in 0..n {
+            let (fj, gj) = kernels.interface(grid.q[j], grid.u[j]);
+            if req.sigma_interface {
+                f2[j] = fj;
+            }
+            if req.tau_interface {
+                g2[j] = gj;
+            }
+            if j % 2 == 0 && j / 2 >= from && grid.q[j] * d >= X_CUT {
+                let small =
+                    |want: bool, fv: f64, b: f64| !want || fv * suffix[j] <= tol * area.value * b;
+                if small(req.sigma_interface, fj, before[0])
+                    && small(req.tau_interface, gj, before[1])
+                {
+                    to = j / 2;
+                    n_fg = j + 1;
+                    break;
+                }
+            }
+            let wf = grid.w[j] * f[j];
+            before[0] += wf * fj;
+            before[1] += wf * gj;
+            n_fg = j + 1;
+        }
+        while n_fg < (2 * to + 5).min(n) {
+            let (fj, gj) = kernels.interface(grid.q[n_fg], grid.u[n_fg]);
+            if req.sigma_interface {
+                f2[n_fg] = fj;
+            }
+            if req.tau_interface {
+                g2[n_fg] = gj;
+            }
+            n_fg += 1;
+        }
         // Then the two-node panels. First G and P at every node (forward pass: running sum plus
         // the panel's partial integral), with the error of P from the error of G.
         refill(p_node, n, 0.0);
@@ -1253,20 +1272,15 @@ fn evaluate_on(
                         + ERR_SAFETY * (wt(j0) * dp_part[j0] + wt(j1) * dp_part[j1]).abs()
                 })
                 .sum();
-            (acc.0 + v, acc.1 + e + dp + tail, tail)
+            (acc.0 + v, acc.1 + e + dp + tail)
         };
         let (mut sig, mut tau) = (near.sigma, near.tau);
-        let tol = cut.unwrap_or(f64::INFINITY);
         for (want, k2, acc) in [
             (req.sigma_interface, &f2, &mut sig),
             (req.tau_interface, &g2, &mut tau),
         ] {
             if want {
-                let (v, e, tail) = base(k2, *acc);
-                if tail > tol * v {
-                    return Ok(Err(n_fg + near.evaluations));
-                }
-                *acc = (v, e);
+                *acc = base(k2, *acc);
             }
         }
         if req.sigma_interface {
@@ -1292,7 +1306,7 @@ fn evaluate_on(
         sqrt_estimate(ratio, ratio_err, Termination::Converged)
     });
 
-    Ok(Ok(Contact {
+    Ok(Contact {
         thickness: d,
         pressure: p0,
         g1,
@@ -1305,7 +1319,7 @@ fn evaluate_on(
         kernel_evaluations: evaluations + near_evaluations,
         // Here: this grid's nodes that evaluated f, g (the caller adds up the grids tried).
         interface_kernel_evaluations: if need_fg { n_fg + near_evaluations } else { 0 },
-    }))
+    })
 }
 
 /// √v with the error of v propagated (d√v = dv / (2√v)), bounded by √dv near v = 0.

@@ -246,28 +246,27 @@ impl KernelTable {
     /// S⁻², f², g² at x = qd with y = ln x.
     #[inline]
     pub fn squared(&self, x: f64, y: f64) -> Squared {
+        let (f2, g2) = self.interface(x, y);
+        Squared {
+            k: self.k(x, y),
+            f2,
+            g2,
+        }
+    }
+
+    /// f² and g² at x = qd with y = ln x (S⁻² not evaluated).
+    #[inline]
+    pub fn interface(&self, x: f64, y: f64) -> (f64, f64) {
         if x > X_FAR {
             if x > QD_BULK {
-                return Squared {
-                    k: 1.0,
-                    f2: 0.0,
-                    g2: 0.0,
-                };
+                return (0.0, 0.0);
             }
             let e = (-x).exp();
             let [f, g] = self.far.map(|[a, b]| (a + b * x) * e);
-            return Squared {
-                k: 1.0,
-                f2: f * f,
-                g2: g * g,
-            };
+            return (f * f, g * g);
         }
         let (p, t) = self.locate(y);
         let e = (-2.0 * x).exp();
-        Squared {
-            k: poly(&self.k[p], t),
-            f2: poly(&self.f[p], t) * e,
-            g2: poly(&self.g[p], t) * e,
-        }
+        (poly(&self.f[p], t) * e, poly(&self.g[p], t) * e)
     }
 }
