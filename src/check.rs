@@ -1197,6 +1197,65 @@ mod tests {
         }
     }
 
+    /// Bond-shear utilisations of random few-mode spectra on the narrowest kernel (module docs,
+    /// step 2), peaking between 1.02 and 1.6: the search agrees with a dense scan at 400
+    /// points per decade (bisected to 1e-12) on the band's upper edge.
+    #[test]
+    fn few_mode_shear_bands_match_a_dense_scan() {
+        let e = |y: f64, nu: f64| crate::layer::Elastic::new(y, nu).unwrap();
+        let b = Bilayer::new(e(1e6, 0.0), e(1e11, 0.5));
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut rand = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let grid: Vec<f64> = (0..=2800)
+            .map(|i| 1e-2 * 10f64.powf(-i as f64 / 400.0))
+            .collect();
+        for case in 0..24 {
+            let modes: Vec<(f64, f64)> = (0..1 + case % 4)
+                .map(|_| (1e5 * 10f64.powf(3.0 * rand()), 10f64.powf(-2.0 * rand())))
+                .collect();
+            let tau = |d: f64| {
+                modes
+                    .iter()
+                    .map(|&(q, w)| w * b.response(q * d).g.powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            };
+            let peak = grid.iter().map(|&d| tau(d)).fold(0.0, f64::max);
+            let scale = (1.02 + 0.58 * rand()) / peak;
+            let u = |d: f64| scale * tau(d);
+            let m = search_min_thickness(1e-9, 1e-2, |d| {
+                Ok(Utilisation {
+                    value: u(d),
+                    rel_err: 0.0,
+                    kind: Some(CheckKind::BondShear),
+                })
+            })
+            .unwrap();
+            // The dense scan's largest failing thickness, then bisection to the edge above it.
+            let i = grid.iter().position(|&d| u(d) > 1.0).unwrap();
+            assert!(i > 0);
+            let (mut lo, mut hi) = (grid[i], grid[i - 1]);
+            while hi / lo > 1.0 + 1e-12 {
+                let mid = (lo * hi).sqrt();
+                if u(mid) > 1.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let d = m.thickness.unwrap();
+            assert!(
+                (d.value - lo).abs() <= d.err * 1.0001,
+                "case {case} {modes:?}: {d:?} vs {lo:e}"
+            );
+        }
+    }
+
     #[test]
     fn a_flat_low_utilisation_is_crossed_in_wide_steps() {
         // Flat at 0.01 on the thick side, failing below d0 = 3.7e-6.
