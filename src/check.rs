@@ -126,6 +126,8 @@ pub const MIN_GROWTH: f64 = 1.0;
 /// The narrow-band guard stops when the parabola through its best three points promises less
 /// than this fraction of the headroom 1 − u to failure.
 pub const GUARD_RESOLVED: f64 = 0.1;
+/// The most evaluations the narrow-band guard spends at one sampled maximum.
+pub const GUARD_MAX_STEPS: usize = 16;
 /// Share of G(q1) from the lowest octave above which the result is flagged (README, "Checking
 /// the theory on the measured surface": above 0.5 the bundled map's exact contact area is 2.7x
 /// Persson's or more; at a share of 0.42 they agree within the grid error).
@@ -848,7 +850,8 @@ fn scan_step(above: Option<Sample>, cur: Sample, h: f64) -> (f64, f64) {
 /// samples `lo` and `hi` (lo.x < mid.x < hi.x): successive parabolic interpolation for the
 /// maximum of the utilisation, stopping at the first failing point, else once the parabola
 /// through the best three points promises less than [`GUARD_RESOLVED`] of the remaining
-/// headroom (after at least one evaluation), or the bracket is 1e-3 wide in ln d. Returns the
+/// headroom (after at least one evaluation), or the bracket is 1e-3 wide in ln d, or after
+/// [`GUARD_MAX_STEPS`] evaluations (the golden-section search it replaces took 13). Returns the
 /// failing point and the nearest passing point above it.
 fn peak_guard(
     mut lo: Sample,
@@ -858,7 +861,7 @@ fn peak_guard(
 ) -> Result<Option<(Sample, Sample)>, Error> {
     let mut seen = vec![lo, mid, hi];
     let mut evaluated = false;
-    while hi.x - lo.x > 1e-3 {
+    while hi.x - lo.x > 1e-3 && seen.len() < 3 + GUARD_MAX_STEPS {
         let w = hi.x - lo.x;
         let vertex = parabola_vertex(lo, mid, hi);
         if evaluated && vertex.is_none_or(|v| v.1 - mid.u <= GUARD_RESOLVED * (1.0 - mid.u)) {
