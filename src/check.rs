@@ -32,8 +32,8 @@
 //!    most 0.75 decade while the utilisation u (value/limit) stays below 0.15 over the step, or
 //!    0.5 decade below 0.3 ([`WIDE_STEPS`]), with u extrapolated log-linearly from the last two
 //!    samples at a growth rate of ln u per unit of ln d of at least [`MIN_GROWTH`] (aimed at
-//!    [`WIDE_AIM`] of the threshold). A widened
-//!    step that lands above its threshold is redone with base steps (its sample is reused).
+//!    [`WIDE_AIM`] of the threshold). A widened step that lands above its threshold is redone
+//!    with base steps (its sample is reused).
 //!    A thick film's utilisation is flat (its interface stresses are exponentially small) and
 //!    these steps cross it in a few evaluations instead of eight per decade. Why a failing band
 //!    cannot hide inside a widened step whose ends are below its threshold: with P and S frozen,
@@ -44,8 +44,10 @@
 //!    ln d). Any such superlevel set through a point d* is at least as wide, so for every mode
 //!    one end of a step around d* sees |g| ≥ c·|g(q d*)| (c = 1/4, 1/2), and the larger end
 //!    utilisation is at least c·u(d*)/√2 (0.177, 0.354): a failing point (u > 1) inside would
-//!    put an end above the threshold (0.15, 0.3). The normal-stress kernel |f| is monotone in
-//!    qd, and so is the mean contact pressure for a monotone S;
+//!    put an end above the threshold (0.15, 0.3); test `few_mode_shear_bands_match_a_dense_scan`
+//!    checks this on random spectra. The substrate-yield values go through |f|, monotone in qd,
+//!    and through S (in P and G), which has at most one turn in qd over the same pairs (checked
+//!    when the steps were chosen, not by a test);
 //! 3. guards against a failing band narrower than the step: at every sampled local maximum of
 //!    u above [`PEAK_GUARD`] it maximises u between the neighbouring samples by successive
 //!    parabolic interpolation (golden-section steps where the parabola does not help) and treats
@@ -282,7 +284,8 @@ pub struct Evaluation {
 /// The minimum thickness.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MinThickness {
-    /// d_min with the bracket half-width as error; `None` when no thickness passes.
+    /// d_min, the geometric midpoint of the final bracket, with the distance to its upper end
+    /// plus the shift by the utilisation's own error as error; `None` when no thickness passes.
     pub thickness: Option<Estimate>,
     /// The check that fails just below d_min (or at every thickness when none passes).
     pub governing: Option<CheckKind>,
