@@ -81,6 +81,13 @@ fn main() {
         }),
     ));
     rows.push((
+        "d_min search alone, new checker (its engine's grid built)".into(),
+        time(reps, || {
+            let c = Checker::new(&spectrum, scene.design(), scene.settings).unwrap();
+            c.min_thickness().unwrap();
+        }),
+    ));
+    rows.push((
         "d_min search alone (engine set up)".into(),
         time(reps, || {
             c.min_thickness().unwrap();
