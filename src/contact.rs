@@ -22,14 +22,17 @@
 //! The kernels S⁻², f², g² at the nodes come from a [`KernelTable`] of the material pair (built
 //! once per engine and pair, checked against the exact forms to 2e−14 relative; the exact forms
 //! when no table resolves them), two to four times cheaper than the stable forms themselves.
-//! Interface tail: above q·d = 40 ([`X_FAR`]) f² and g² are below e^{−80}·O(x²) and decrease
-//! (`layer::KernelTable`'s far field). When the spectrum starts at q_L·d ≤ [`X_HEAD`] = 10, where
-//! F² is at least ~e^{−20}, the interface integrals stop at the first panel whose first node lies
-//! beyond 40, and the rest, at most F²(that node)·∫W K du with P ≤ 1, is added to their error
-//! estimate: e^{−60} relative times the ratio of ∫W du beyond and before. Where that is not
-//! below rtol/1000 of the rest (a band of roughness far beyond q·d = 40), the evaluation is
-//! repeated over the whole range. Films this thick evaluate f, g and P only where they matter; thicker ones, whose
-//! interface stresses are exponentially small everywhere, are integrated in full.
+//! Interface tail: above q·d = 20 f e^x and g e^x are linear in x to 1e−15 (the far field of
+//! `layer::KernelTable`: the stable forms' e^{−2x} terms are below x²e^{−2x} < 2e−15 there), and
+//! (a + bx)e^{−x} with a/b ≥ 0 decreases for x > 1: f² and g² decrease. The interface integrals
+//! stop at the first panel whose first node lies beyond x_c = max(20, q_L·d + m), and the rest,
+//! at most F²(that node)·∫W K du with P ≤ 1, is added to their error estimate: about
+//! x_c²e^{−2m} relative times the ratio of ∫W K du beyond to ∫W K F² du before, which the margin
+//! m = ½ ln(10¹⁰/tol) keeps below tol = rtol/1000 for ratios up to ~10⁴. This is done when
+//! x_c ≤ 40; where the bound is not below rtol/1000 of the rest (a band of roughness far beyond
+//! x_c), the evaluation is repeated over the whole range. Films this thick evaluate f, g and P
+//! only where they matter; thicker ones, whose interface stresses are exponentially small
+//! everywhere, are integrated in full.
 //! If the estimate misses rtol, the evaluation is repeated on grids with panels halved, up to
 //! [`MAX_REFINE`] times, and reports `ToleranceNotReached` if it still misses.
 
@@ -123,6 +126,8 @@ struct Grid {
     left: Vec<f64>,
     /// Number of panels below 2 q_L.
     low_octave_panels: usize,
+    /// ∫W du and its error estimate (E_eff's denominator).
+    bare: (f64, f64),
     /// Per start node s: weights of the divided differences f[u_s, …, u_{s+k}], k = 1..4 (row
     /// k − 1), over the nodes s..s+k (zero where the grid ends first). d-independent, so the
     /// error estimates take a dot product instead of Newton's table with its divisions.
@@ -171,6 +176,7 @@ impl Grid {
             width: vec![],
             left: vec![],
             low_octave_panels: 0,
+            bare: (0.0, 0.0),
             dd: vec![],
         };
         let ln_w = |u: f64| 4.0 * u + spectrum.c(u.exp()).ln();
@@ -268,6 +274,7 @@ impl Grid {
                 })
             })
             .collect();
+        g.bare = g.bare_integral();
         g
     }
 
@@ -286,24 +293,16 @@ impl Grid {
 
     /// Per-panel error estimates of Σ w f, f = ρψ: the Gauss error term with ψ⁗ from the fourth
     /// divided difference of f over five neighbouring nodes.
-    fn panel_errors(&self, f: &[f64]) -> Vec<f64> {
+    fn panel_errors(&self, f: &[f64], out: &mut Vec<f64>) {
         let n = self.q.len();
-        (0..self.panels())
-            .map(|p| {
-                if n < 5 {
-                    return 0.0;
-                }
-                let start = (2 * p).saturating_sub(2).min(n - 5);
-                ERR_SAFETY * self.err4[p] * (24.0 * self.divided(start, 4, f)).abs()
-            })
-            .collect()
-    }
-
-    /// Σ_j w_j ρ_j ψ_j over the panels from `from` to the end of `psi`.
-    fn weighted_sum(&self, psi: &[f64], from: usize) -> f64 {
-        (2 * from..psi.len())
-            .map(|j| self.w[j] * self.rho[j] * psi[j])
-            .sum()
+        out.clear();
+        out.extend((0..self.panels()).map(|p| {
+            if n < 5 {
+                return 0.0;
+            }
+            let start = (2 * p).saturating_sub(2).min(n - 5);
+            ERR_SAFETY * self.err4[p] * (24.0 * self.divided(start, 4, f)).abs()
+        }));
     }
 
     /// Σ_j w_j f_j over all panels for f = ρψ, panel by panel, with the panel error estimates
@@ -319,10 +318,11 @@ impl Grid {
         (sum, err + 8.0 * EPS * abs * (self.q.len() as f64).sqrt())
     }
 
-    /// Σ_j w_j ρ_j ψ_j over all panels with its error estimate.
-    fn integrate(&self, psi: &[f64]) -> (f64, f64) {
-        let f: Vec<f64> = psi.iter().zip(&self.rho).map(|(p, r)| p * r).collect();
-        self.sum_with_errors(&f, &self.panel_errors(&f))
+    /// ∫W du (Σ_j w_j ρ_j) with its error estimate, for E_eff.
+    fn bare_integral(&self) -> (f64, f64) {
+        let mut errs = vec![];
+        self.panel_errors(&self.rho, &mut errs);
+        self.sum_with_errors(&self.rho, &errs)
     }
 
     /// Error estimate of Σ w ρ K k2 P from panel `from` on, where P = P(G(u)) has kinks in its
@@ -376,36 +376,78 @@ impl Grid {
     }
 }
 
-/// How far the graded region reaches above q_L, in panel widths (the two-node rule is used
-/// only where a panel is narrower than 1/64 of its distance to q_L).
-const GRADED_SPAN: f64 = 64.0;
+/// Relative error of the n-point Gauss–Legendre rule on ∫ x^{-1/2} dx over a panel at ρ times
+/// its width from the singular point, ≈ C_n (2ρ + 1)^{−2n}: C_n fitted to 30-digit evaluations for
+/// n = 2..5 at ρ = 1..64 (within a factor 2 there). P(G(u)) behaves so near q_L.
+fn graded_rule_error(n: usize, rho: f64) -> f64 {
+    const C: [f64; 6] = [0.0, 0.0, 0.024, 5.2e-3, 1.2e-3, 2.9e-4];
+    C[n.min(5)] * (2.0 * rho + 1.0).powi(-2 * n as i32)
+}
+
+/// The per-panel share of rtol a graded-region panel's (or the first base panels') error may
+/// take: their errors add up over panels whose integrals are each a small part of the total.
+const GRADED_SHARE: f64 = 0.05;
+
+/// How far the graded region reaches above q_L, in panel widths: where the two-node base rule's
+/// error on the x^{-1/2} behaviour falls below [`GRADED_SHARE`]·rtol (at most 64 widths).
+fn graded_span(rtol: f64) -> f64 {
+    (1..=64)
+        .map(f64::from)
+        .find(|&rho| graded_rule_error(2, rho) <= GRADED_SHARE * rtol)
+        .unwrap_or(64.0)
+}
+
+/// Nodes of a graded panel at ρ times its width from q_L: the fewest (3, 4 or 6) whose companion
+/// rule (one node fewer, the error estimate) meets [`GRADED_SHARE`]·rtol.
+fn graded_nodes(rho: f64, rtol: f64) -> usize {
+    [3, 4]
+        .into_iter()
+        .find(|&n| graded_rule_error(n - 1, rho) <= GRADED_SHARE * rtol)
+        .unwrap_or(6)
+}
 /// Width (in ln q) of the innermost piece above q_L, done in closed form.
 const INNER_WIDTH: f64 = 1e-11;
 
-/// One 6-point Gauss–Legendre panel of the graded region, with a 5-point companion rule for
-/// the error estimate. Weights include W = q⁴C at the node; `b6`, `b5` integrate the
-/// 6-node interpolant of the G integrand from the panel's left end to each node.
+/// One n-point Gauss–Legendre panel of the graded region (n ≤ 6), with an (n−1)-point companion
+/// rule for the error estimate. Weights include W = q⁴C at the node; `b`, `bc` integrate the
+/// n-node interpolant of the G integrand from the panel's left end to each node. Only the first
+/// n (n − 1) entries are used.
 struct GlPanel {
-    q6: [f64; 6],
-    u6: [f64; 6],
-    u5: [f64; 5],
-    w6: [f64; 6],
-    b6: [[f64; 6]; 6],
-    q5: [f64; 5],
-    w5: [f64; 5],
-    b5: [[f64; 6]; 5],
+    n: usize,
+    q: [f64; 6],
+    u: [f64; 6],
+    w: [f64; 6],
+    b: [[f64; 6]; 6],
+    qc: [f64; 5],
+    uc: [f64; 5],
+    wc: [f64; 5],
+    bc: [[f64; 6]; 5],
 }
 
 /// The interface quadrature near q_L, where P(G(u)) ∝ (u − u_L)^{-1/2} once G ≫ p0²: panels
 /// shrinking towards q_L (each half as wide as its distance to q_L, split at the spectrum's knots),
 /// 6-point Gauss–Legendre on each (error: the difference to 5 points), and the innermost
 /// [u_L, u_L + 1e-11] in closed form, ∫_0^{G} P dG being known exactly.
+///
+/// Where G stays below (p0/2)²/36 the contact probability is erf(≥ 6) = 1 in f64 and the
+/// integrand is smooth: the innermost panels up to there are replaced by one 6-point panel from
+/// q_L (`merged`, chosen per evaluation from a bound on G). Where G stays below (p0/2)²/3 over the
+/// whole region P varies slowly and the base grid starts at q_L (see `evaluate_on`).
 struct Graded {
     panels: Vec<GlPanel>,
     /// First two-node panel of the base grid after the graded region.
     base_from: usize,
     q_l: f64,
+    /// W(q_L) times the innermost piece's width.
     w_l: f64,
+    /// W(q_L).
+    w_at_l: f64,
+    /// One panel over [u_L, right end of panel i] for each i whose end lies within the first
+    /// base panel (no knot inside), and those ends' offsets from u_L.
+    merged: Vec<(f64, GlPanel)>,
+    /// γ with G(u_L + r) ≤ G'(u_L)·r·e^{γr} within the first base panel: |d ln W/du| there
+    /// plus 8 ≥ |d ln S⁻²/du| (≤ 6: S⁻² is at most ∝ (qd)⁻⁶).
+    growth: f64,
 }
 
 struct Near {
@@ -413,7 +455,21 @@ struct Near {
     g_raw_err: f64,
     sigma: (f64, f64),
     tau: (f64, f64),
+    /// Kernel evaluations made.
+    evaluations: usize,
 }
+
+/// Near-q_L sums before any panel: nothing.
+const NEAR_NONE: Near = Near {
+    g_raw: 0.0,
+    g_raw_err: 0.0,
+    sigma: (0.0, 0.0),
+    tau: (0.0, 0.0),
+    evaluations: 0,
+};
+
+/// Where G stays below (p0/2)² divided by this over the graded region, it is not used.
+const GRADED_SKIP: f64 = 3.0;
 
 /// ∫_{-1}^{y} ℓ_k(x) dx for the Lagrange basis on `nodes`, by the Gauss–Legendre rule (x, w)
 /// with as many nodes (exact for the degree-(n−1) basis).
@@ -436,14 +492,14 @@ fn lagrange_integral(nodes: &[f64], (x, w): (&[f64], &[f64]), k: usize, y: f64) 
 }
 
 impl Graded {
-    fn new(spectrum: &Spectrum, grid: &Grid, h: f64) -> Graded {
+    fn new(spectrum: &Spectrum, grid: &Grid, h: f64, rtol: f64) -> Graded {
         let q_l = spectrum.q_low();
         let u0 = q_l.ln();
         let u_end = spectrum.support().1.ln();
         // The two-node rule takes over where panels are narrower than 1/64 of their distance to q_L.
         let first = grid.width.first().copied().unwrap_or(h).min(h);
         let base_from = (0..grid.panels())
-            .find(|&p| grid.left[p] - u0 >= GRADED_SPAN * first.max(grid.width[p]))
+            .find(|&p| grid.left[p] - u0 >= graded_span(rtol) * first.max(grid.width[p]))
             .unwrap_or(grid.panels());
         let span = if base_from < grid.panels() {
             grid.left[base_from] - u0
@@ -467,52 +523,89 @@ impl Graded {
         );
         ends.sort_by(f64::total_cmp);
         ends.dedup_by(|a, b| (*a - *b).abs() <= 1e-14 * b.abs());
-        let (x6, gw6) = quad::gauss_legendre(6);
-        let (x5, gw5) = quad::gauss_legendre(5);
-        let mut b6n = [[0.0; 6]; 6];
-        let mut b5n = [[0.0; 6]; 5];
-        for k in 0..6 {
-            for j in 0..6 {
-                b6n[j][k] = lagrange_integral(&x6, (&x6, &gw6), k, x6[j]);
-            }
-            for j in 0..5 {
-                b5n[j][k] = lagrange_integral(&x6, (&x6, &gw6), k, x5[j]);
-            }
-        }
+        // Gauss–Legendre rules with 2..6 nodes, and the partial-integral matrices of the n-node
+        // interpolant at the n nodes and at the n − 1 companion nodes.
+        let rules: Vec<(Vec<f64>, Vec<f64>)> = (0..=6).map(quad::gauss_legendre).collect();
+        let partials = |n: usize, at: &[f64]| -> [[f64; 6]; 6] {
+            let (x, w) = (&rules[n].0, &rules[n].1);
+            std::array::from_fn(|j| {
+                std::array::from_fn(|k| match (at.get(j), k < n) {
+                    (Some(&y), true) => lagrange_integral(x, (x, w), k, y),
+                    _ => 0.0,
+                })
+            })
+        };
+        let bn: Vec<[[f64; 6]; 6]> = (0..=6)
+            .map(|n| {
+                if n < 2 {
+                    [[0.0; 6]; 6]
+                } else {
+                    partials(n, &rules[n].0)
+                }
+            })
+            .collect();
+        let bcn: Vec<[[f64; 6]; 6]> = (0..=6)
+            .map(|n| {
+                if n < 2 {
+                    [[0.0; 6]; 6]
+                } else {
+                    partials(n, &rules[n - 1].0)
+                }
+            })
+            .collect();
         let w_of = |q: f64| q.powi(4) * spectrum.c(q);
-        let mut panels = vec![];
-        for pair in ends.windows(2) {
-            let (a, b) = (pair[0], pair[1]);
+        let gl_panel = |a: f64, b: f64, n: usize| {
             let half = 0.5 * (b - a);
             let at = |x: f64| q_l * (a + half * (x + 1.0)).exp();
-            let q6: [f64; 6] = std::array::from_fn(|k| at(x6[k]));
-            let q5: [f64; 5] = std::array::from_fn(|k| at(x5[k]));
-            let wq6: [f64; 6] = std::array::from_fn(|k| w_of(q6[k]));
-            panels.push(GlPanel {
-                q6,
-                u6: q6.map(f64::ln),
-                u5: q5.map(f64::ln),
-                w6: std::array::from_fn(|k| gw6[k] * half * wq6[k]),
-                b6: std::array::from_fn(|j| std::array::from_fn(|k| b6n[j][k] * half * wq6[k])),
-                q5,
-                w5: std::array::from_fn(|k| gw5[k] * half * w_of(q5[k])),
-                b5: std::array::from_fn(|j| std::array::from_fn(|k| b5n[j][k] * half * wq6[k])),
-            });
-        }
-        let mut g = Graded {
+            let (x, gw) = (&rules[n].0, &rules[n].1);
+            let (xc, gwc) = (&rules[n - 1].0, &rules[n - 1].1);
+            let q: [f64; 6] = std::array::from_fn(|k| x.get(k).map_or(q_l, |&x| at(x)));
+            let qc: [f64; 5] = std::array::from_fn(|k| xc.get(k).map_or(q_l, |&x| at(x)));
+            let wq: [f64; 6] = std::array::from_fn(|k| if k < n { w_of(q[k]) } else { 0.0 });
+            let wqc: [f64; 5] = std::array::from_fn(|k| if k < n - 1 { w_of(qc[k]) } else { 0.0 });
+            GlPanel {
+                n,
+                q,
+                u: q.map(f64::ln),
+                w: std::array::from_fn(|k| gw.get(k).map_or(0.0, |g| g * half * wq[k])),
+                b: std::array::from_fn(|j| std::array::from_fn(|k| bn[n][j][k] * half * wq[k])),
+                qc,
+                uc: qc.map(f64::ln),
+                wc: std::array::from_fn(|k| gwc.get(k).map_or(0.0, |g| g * half * wqc[k])),
+                bc: std::array::from_fn(|j| std::array::from_fn(|k| bcn[n][j][k] * half * wq[k])),
+            }
+        };
+        // Panels touching q_L's halving sequence (ρ < 4) keep 6 nodes; the knot-split panels
+        // further out need fewer.
+        let panels: Vec<GlPanel> = ends
+            .windows(2)
+            .map(|p| {
+                let rho = p[0] / (p[1] - p[0]);
+                let n = if rho < 4.0 {
+                    6
+                } else {
+                    graded_nodes(rho, rtol)
+                };
+                gl_panel(p[0], p[1], n)
+            })
+            .collect();
+        let first_end = grid.width.first().copied().unwrap_or(span).min(span);
+        let merged = ends[1..]
+            .iter()
+            .take_while(|&&r| r <= first_end)
+            .map(|&r| (r, gl_panel(0.0, r, 6)))
+            .collect();
+        let w_at_l = w_of(q_l);
+        let slope = (w_of(q_l * first_end.exp()) / w_at_l).ln() / first_end;
+        Graded {
             panels,
             base_from,
             q_l,
-            w_l: w_of(q_l),
-        };
-        // The innermost piece's width is the first panel's left offset.
-        g.panels.shrink_to_fit();
-        g.w_l *= ends[0];
-        g
-    }
-
-    fn evaluations(&self) -> usize {
-        11 * self.panels.len() + 1
+            w_l: w_at_l * ends[0],
+            w_at_l,
+            merged,
+            growth: slope.abs() + 8.0,
+        }
     }
 
     fn integrate(&self, kernels: &Kernels, p0: f64, cg: f64, req: Request) -> Near {
@@ -520,39 +613,86 @@ impl Graded {
             let r = kernels.squared(q, u);
             (r.k, r.f2, r.g2)
         };
-        // Innermost piece: G grows linearly from 0, F² is constant to 1e-10.
         let (k0, f0, g0) = kf(self.q_l, self.q_l.ln());
-        let g_inner = self.w_l * k0;
-        let j0 = top_variance_half(p0, cg * g_inner) / cg;
-        let mut near = Near {
-            g_raw: g_inner,
-            g_raw_err: 1e-9 * g_inner,
-            sigma: (f0 * j0, 1e-9 * f0 * j0),
-            tau: (g0 * j0, 1e-9 * g0 * j0),
+        // The largest merged panel over which G ≤ a²/36 by the bound G'(u_L)·r·e^{γr}.
+        let (a2, gp0) = (0.25 * p0 * p0, cg * self.w_at_l * k0);
+        let merge = self
+            .merged
+            .iter()
+            .rposition(|&(r, _)| gp0 * r * (self.growth * r).exp() <= a2 / 36.0);
+        let (mut near, rest) = match merge {
+            Some(i) => {
+                let mut near = Near {
+                    evaluations: 1,
+                    ..NEAR_NONE
+                };
+                self.add_panel(&self.merged[i].1, &mut near, &kf, p0, cg, req);
+                (near, &self.panels[i + 1..])
+            }
+            None => {
+                // Innermost piece: G grows linearly from 0, F² is constant to 1e-10.
+                let g_inner = self.w_l * k0;
+                let j0 = top_variance_half(p0, cg * g_inner) / cg;
+                let near = Near {
+                    g_raw: g_inner,
+                    g_raw_err: 1e-9 * g_inner,
+                    sigma: (f0 * j0, 1e-9 * f0 * j0),
+                    tau: (g0 * j0, 1e-9 * g0 * j0),
+                    evaluations: 1,
+                };
+                (near, &self.panels[..])
+            }
         };
-        for panel in &self.panels {
-            let e6: [(f64, f64, f64); 6] = std::array::from_fn(|k| kf(panel.q6[k], panel.u6[k]));
-            let e5: [(f64, f64, f64); 5] = std::array::from_fn(|k| kf(panel.q5[k], panel.u5[k]));
-            let g6: f64 = (0..6).map(|k| panel.w6[k] * e6[k].0).sum();
-            let g5: f64 = (0..5).map(|k| panel.w5[k] * e5[k].0).sum();
-            let p6: [f64; 6] = std::array::from_fn(|j| {
-                contact_probability(
-                    p0,
-                    cg * (near.g_raw + (0..6).map(|k| panel.b6[j][k] * e6[k].0).sum::<f64>()),
-                )
-            });
-            let p5: [f64; 5] = std::array::from_fn(|j| {
-                contact_probability(
-                    p0,
-                    cg * (near.g_raw + (0..6).map(|k| panel.b5[j][k] * e6[k].0).sum::<f64>()),
-                )
-            });
+        for panel in rest {
+            self.add_panel(panel, &mut near, &kf, p0, cg, req);
+        }
+        near
+    }
+
+    /// One 6-point panel (and its 5-point companion) added to the sums.
+    fn add_panel(
+        &self,
+        panel: &GlPanel,
+        near: &mut Near,
+        kf: &impl Fn(f64, f64) -> (f64, f64, f64),
+        p0: f64,
+        cg: f64,
+        req: Request,
+    ) {
+        {
+            let n = panel.n;
+            let mut e6 = [(0.0, 0.0, 0.0); 6];
+            let mut e5 = [(0.0, 0.0, 0.0); 5];
+            for (e, (&q, &u)) in e6.iter_mut().zip(panel.q.iter().zip(&panel.u)).take(n) {
+                *e = kf(q, u);
+            }
+            for (e, (&q, &u)) in e5
+                .iter_mut()
+                .zip(panel.qc.iter().zip(&panel.uc))
+                .take(n - 1)
+            {
+                *e = kf(q, u);
+            }
+            let g6: f64 = (0..n).map(|k| panel.w[k] * e6[k].0).sum();
+            let g5: f64 = (0..n - 1).map(|k| panel.wc[k] * e5[k].0).sum();
+            let mut p6 = [0.0; 6];
+            let mut p5 = [0.0; 5];
+            let at = |row: &[f64; 6]| {
+                let partial: f64 = row.iter().zip(&e6).take(n).map(|(b, e)| b * e.0).sum();
+                contact_probability(p0, cg * (near.g_raw + partial))
+            };
+            for (p, row) in p6.iter_mut().zip(&panel.b).take(n) {
+                *p = at(row);
+            }
+            for (p, row) in p5.iter_mut().zip(&panel.bc).take(n - 1) {
+                *p = at(row);
+            }
             let add = |acc: &mut (f64, f64), pick: fn(&(f64, f64, f64)) -> f64| {
-                let i6: f64 = (0..6)
-                    .map(|k| panel.w6[k] * e6[k].0 * p6[k] * pick(&e6[k]))
+                let i6: f64 = (0..n)
+                    .map(|k| panel.w[k] * e6[k].0 * p6[k] * pick(&e6[k]))
                     .sum();
-                let i5: f64 = (0..5)
-                    .map(|k| panel.w5[k] * e5[k].0 * p5[k] * pick(&e5[k]))
+                let i5: f64 = (0..n - 1)
+                    .map(|k| panel.wc[k] * e5[k].0 * p5[k] * pick(&e5[k]))
                     .sum();
                 acc.0 += i6;
                 acc.1 += (i6 - i5).abs() + 8.0 * EPS * i6.abs();
@@ -565,8 +705,8 @@ impl Graded {
             }
             near.g_raw += g6;
             near.g_raw_err += (g6 - g5).abs();
+            near.evaluations += 2 * n - 1;
         }
-        near
     }
 }
 
@@ -581,8 +721,9 @@ pub struct Engine {
     table: Mutex<Option<Arc<KernelTable>>>,
 }
 
-/// The interface integrals are cut at q·d = [`X_FAR`] only when q_L·d is at most this (module doc).
-const X_HEAD: f64 = 10.0;
+/// Where f² and g² are known to decrease, the lowest q·d at which the interface integrals are
+/// cut (module doc).
+const X_CUT: f64 = 20.0;
 
 /// How far (in ln(qd)) a rebuilt kernel table reaches beyond the range asked for, so that a
 /// thickness scan does not rebuild it at every step.
@@ -689,6 +830,8 @@ impl Engine {
                 &self.spectrum,
                 self.grid(level),
                 panel_width(self.settings.rtol) / (1 << level) as f64,
+                // Each level halves the base panels: their error falls 16-fold.
+                self.settings.rtol / 16f64.powi(level as i32),
             )
         })
     }
@@ -720,12 +863,25 @@ impl Engine {
         for level in 0..=MAX_REFINE {
             let grid = self.grid(level);
             let graded = request.interface().then(|| self.graded(level));
-            evaluations += grid.q.len() + graded.map_or(0, |g| g.evaluations());
+            evaluations += grid.q.len();
             // The interface tail is cut where its bound is below rtol/1000 of the rest; else
             // (spectra whose weight lies far beyond q·d = 40) the whole range is integrated.
             let cut_tol = 1e-3 * self.settings.rtol;
-            let on =
-                |cut| evaluate_on(grid, graded, &kernels, stack, p0, request, evaluations, cut);
+            let on = |cut| {
+                SCRATCH.with_borrow_mut(|s| {
+                    evaluate_on(
+                        grid,
+                        graded,
+                        &kernels,
+                        stack,
+                        p0,
+                        request,
+                        evaluations,
+                        cut,
+                        s,
+                    )
+                })
+            };
             let mut c = match on(Some(cut_tol))? {
                 Ok(c) => c,
                 Err(spent) => {
@@ -735,6 +891,7 @@ impl Engine {
             };
             interface += c.interface_kernel_evaluations;
             c.interface_kernel_evaluations = interface;
+            evaluations = c.kernel_evaluations;
             add_rounding_floor(&mut c);
             let done = converged(&c, self.settings.rtol);
             last = Some(c);
@@ -801,6 +958,34 @@ fn mark_not_reached(c: &mut Contact, rtol: f64) {
     }
 }
 
+/// Buffers of one evaluation, kept per thread between evaluations: allocating and freeing them
+/// every time made the allocator return the memory to the system (brk) and fetch it again,
+/// ~9 % of an evaluation's time.
+#[derive(Default)]
+struct Scratch {
+    kern: Vec<f64>,
+    f2: Vec<f64>,
+    g2: Vec<f64>,
+    f: Vec<f64>,
+    g_errs: Vec<f64>,
+    p_node: Vec<f64>,
+    g_node: Vec<f64>,
+    dp_cum: Vec<f64>,
+    dp_part: Vec<f64>,
+    p_der: Vec<[f64; 5]>,
+}
+
+thread_local! {
+    static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::default();
+}
+
+/// `v` cleared and filled with `n` copies of `x`, keeping its allocation.
+fn refill<T: Copy>(v: &mut Vec<T>, n: usize, x: T) -> &mut Vec<T> {
+    v.clear();
+    v.resize(n, x);
+    v
+}
+
 /// P(G) = erf(p0 / (2√G)), with P(0) = 1.
 fn contact_probability(p0: f64, g: f64) -> f64 {
     if g <= 0.0 {
@@ -823,20 +1008,27 @@ fn contact_probability_slope(p0: f64, g: f64) -> f64 {
 /// e^{λu} (G'' = λG', G''' = λ²G', G'''' = λ³G'), by Faà di Bruno's formula with
 /// P_k = d^k P/dG^k = −(a/√π) e^{−w} G^{−(2k+1)/2} Q_k(w), a = p0/2, w = a²/G,
 /// Q1 = 1, Q2 = w − 3/2, Q3 = w² − 5w + 15/4, Q4 = w³ − 21w²/2 + 105w/4 − 105/8.
-fn probability_derivatives(p0: f64, g: f64, gp: f64, lam: f64, p: f64) -> [f64; 5] {
+/// `slope` is |dP/dG| = −P_1 at G ([`contact_probability_slope`]), passed in to spare its `exp`.
+fn probability_derivatives(p0: f64, g: f64, slope: f64, gp: f64, lam: f64, p: f64) -> [f64; 5] {
     if g <= 0.0 {
         return [p, 0.0, 0.0, 0.0, 0.0];
     }
     let a = 0.5 * p0;
-    let w = a * a / g;
-    let base = -(a / PI.sqrt()) * (-w).exp() / g.sqrt();
+    let inv_g = 1.0 / g;
+    let w = a * a * inv_g;
     let q = [
         1.0,
         w - 1.5,
         w * w - 5.0 * w + 3.75,
         w * w * w - 10.5 * w * w + 26.25 * w - 13.125,
     ];
-    let pk: [f64; 4] = std::array::from_fn(|k| base * g.powi(-(k as i32 + 1)) * q[k]);
+    // P_k = −|P_1| G^{1−k} Q_k.
+    let pk: [f64; 4] = [
+        -slope * q[0],
+        -slope * inv_g * q[1],
+        -slope * inv_g * inv_g * q[2],
+        -slope * inv_g * inv_g * inv_g * q[3],
+    ];
     let (g1, g2, g3, g4) = (gp, gp * lam, gp * lam * lam, gp * lam * lam * lam);
     [
         p,
@@ -873,6 +1065,7 @@ fn evaluate_on(
     req: Request,
     evaluations: usize,
     cut: Option<f64>,
+    scratch: &mut Scratch,
 ) -> Result<Result<Contact, usize>, Error> {
     let layers = &stack.layers;
     let d = stack.thickness;
@@ -880,10 +1073,13 @@ fn evaluate_on(
     let cg = 0.25 * PI * e0 * e0;
     let n = grid.q.len();
     let need_fg = req.interface();
-    // Interface integrals stop at the first panel whose first node has q·d > X_FAR (module
+    // Interface integrals stop at the first panel whose first node has q·d > x_c (module
     // doc, "Interface tail"); f², g² are needed up to four nodes further for the differences.
-    let to = if need_fg && cut.is_some() && grid.q[0] * d <= X_HEAD {
-        let first_far = grid.q.partition_point(|&q| q * d <= X_FAR);
+    let x_cut = cut.map_or(f64::INFINITY, |tol| {
+        (grid.q[0] * d + 0.5 * (1e10 / tol).ln()).max(X_CUT)
+    });
+    let to = if need_fg && x_cut <= X_FAR {
+        let first_far = grid.q.partition_point(|&q| q * d <= x_cut);
         let from = graded.map_or(0, |g| g.base_from);
         first_far.div_ceil(2).min(grid.panels()).max(from)
     } else if need_fg {
@@ -892,17 +1088,21 @@ fn evaluate_on(
         0
     };
     let n_fg = (2 * to + 5).min(n);
-    let mut kern = vec![0.0; n];
-    let mut f2 = if req.sigma_interface {
-        vec![0.0; n_fg]
-    } else {
-        vec![]
-    };
-    let mut g2 = if req.tau_interface {
-        vec![0.0; n_fg]
-    } else {
-        vec![]
-    };
+    let Scratch {
+        kern,
+        f2,
+        g2,
+        f,
+        g_errs,
+        p_node,
+        g_node,
+        dp_cum,
+        dp_part,
+        p_der,
+    } = scratch;
+    refill(kern, n, 0.0);
+    refill(f2, if req.sigma_interface { n_fg } else { 0 }, 0.0);
+    refill(g2, if req.tau_interface { n_fg } else { 0 }, 0.0);
     for j in 0..n {
         if j < n_fg {
             let r = kernels.squared(grid.q[j], grid.u[j]);
@@ -923,9 +1123,10 @@ fn evaluate_on(
             });
         }
     }
-    let f: Vec<f64> = kern.iter().zip(&grid.rho).map(|(k, r)| k * r).collect();
-    let g_errs = grid.panel_errors(&f);
-    let (g_sum, g_err) = grid.sum_with_errors(&f, &g_errs);
+    f.clear();
+    f.extend(kern.iter().zip(&grid.rho).map(|(k, r)| k * r));
+    grid.panel_errors(f, g_errs);
+    let (g_sum, g_err) = grid.sum_with_errors(f, g_errs);
     let g1 = Estimate::new(cg * g_sum, cg * g_err, Termination::Converged);
     let area = g1.map(
         |g| contact_probability(p0, g),
@@ -950,35 +1151,45 @@ fn evaluate_on(
     });
 
     let (mut sigma_rms_interface, mut tau_rms_interface) = (None, None);
+    let mut near_evaluations = 0;
     if let Some(graded) = graded {
-        // The start of the range, where P(G(u)) ∝ (u − u_L)^{-1/2}: graded panels.
-        let near = graded.integrate(kernels, p0, cg, req);
+        // The start of the range, where P(G(u)) ∝ (u − u_L)^{-1/2}: graded panels, unless G stays
+        // below (p0/2)²/GRADED_SKIP over their region (P flat there; the base grid's estimates
+        // follow P's derivatives).
+        let span_raw: f64 = (0..2 * graded.base_from).map(|j| grid.w[j] * f[j]).sum();
+        let (near, from) = if 0.25 * p0 * p0 >= GRADED_SKIP * cg * span_raw {
+            (NEAR_NONE, 0)
+        } else {
+            (graded.integrate(kernels, p0, cg, req), graded.base_from)
+        };
+        near_evaluations = near.evaluations;
         // Then the two-node panels. First G and P at every node (forward pass: running sum plus
         // the panel's partial integral), with the error of P from the error of G.
-        let from = graded.base_from;
-        let mut p_node = vec![0.0; n];
-        let mut g_node = vec![0.0; n];
+        refill(p_node, n, 0.0);
+        refill(g_node, n, 0.0);
         // |dP/dG| times the cumulative G error, and dP/dG times the signed partial-integral error.
-        let mut dp_cum = vec![0.0; n];
-        let mut dp_part = vec![0.0; n];
+        refill(dp_cum, n, 0.0);
+        refill(dp_part, n, 0.0);
         // P and its first four u-derivatives at each panel's first node, for the error terms.
-        let mut p_der = vec![[0.0; 5]; grid.panels()];
+        refill(p_der, grid.panels(), [0.0; 5]);
         let mut g_left = near.g_raw;
         let mut g_left_err = near.g_raw_err;
         for (p, g_err) in g_errs.iter().enumerate().take(to).skip(from) {
             let (j0, j1) = (2 * p, 2 * p + 1);
             let start = j0.saturating_sub(1).min(n.saturating_sub(3));
             let psi2 = if n >= 3 {
-                2.0 * grid.divided(start, 2, &f)
+                2.0 * grid.divided(start, 2, f)
             } else {
                 0.0
             };
+            let mut slopes = [0.0; 2];
             for (jj, j) in [j0, j1].into_iter().enumerate() {
                 let gv =
                     cg * (g_left + grid.partial[p][jj][0] * f[j0] + grid.partial[p][jj][1] * f[j1]);
                 p_node[j] = contact_probability(p0, gv);
                 g_node[j] = gv;
-                let slope = contact_probability_slope(p0, gv) * cg;
+                slopes[jj] = contact_probability_slope(p0, gv);
+                let slope = slopes[jj] * cg;
                 dp_cum[j] = slope * g_left_err;
                 dp_part[j] = slope * psi2 * grid.partial_curv[p][jj];
             }
@@ -986,17 +1197,18 @@ fn evaluate_on(
             // across the panel's two nodes.
             let gp = cg * grid.w_at[j0] * f[j0];
             let lam = grid.beta[p] + (f[j1] / f[j0]).ln() / (grid.u[j1] - grid.u[j0]);
-            p_der[p] = probability_derivatives(p0, g_node[j0], gp, lam, p_node[j0]);
+            p_der[p] = probability_derivatives(p0, g_node[j0], slopes[0], gp, lam, p_node[j0]);
             g_left += grid.w[j0] * f[j0] + grid.w[j1] * f[j1];
             g_left_err += g_err;
         }
         // Beyond the last panel P ≤ 1 and F² ≤ its value at the first node left out (f², g²
-        // decrease for q·d ≥ X_FAR), so the tail is at most F²(that node)·Σ w ρ K.
+        // decrease for q·d ≥ X_CUT), so the tail is at most F²(that node)·Σ w ρ K.
         let tail_weight: f64 = (2 * to..n).map(|j| grid.w[j] * f[j]).sum();
         let base = |k2: &[f64], acc: (f64, f64)| {
-            let psi: Vec<f64> = (0..2 * to).map(|j| kern[j] * p_node[j] * k2[j]).collect();
-            let v = grid.weighted_sum(&psi, from);
-            let e = grid.product_errors(&kern, k2, &p_der, from, to);
+            let v: f64 = (2 * from..2 * to)
+                .map(|j| grid.w[j] * grid.rho[j] * kern[j] * p_node[j] * k2[j])
+                .sum();
+            let e = grid.product_errors(kern, k2, p_der, from, to);
             let tail = k2.get(2 * to).map_or(0.0, |&k2c| k2c * tail_weight);
             let wt = |j: usize| grid.w[j] * grid.rho[j] * kern[j] * k2[j];
             let dp: f64 = (from..to)
@@ -1018,7 +1230,7 @@ fn evaluate_on(
             if want {
                 let (v, e, tail) = base(k2, *acc);
                 if tail > tol * v {
-                    return Ok(Err(n_fg + graded.evaluations()));
+                    return Ok(Err(n_fg + near.evaluations));
                 }
                 *acc = (v, e);
             }
@@ -1040,8 +1252,7 @@ fn evaluate_on(
     }
 
     let e_eff_over_e_film = req.e_eff.then(|| {
-        let ones = vec![1.0; n];
-        let (bare, bare_err) = grid.integrate(&ones);
+        let (bare, bare_err) = grid.bare;
         let ratio = g_sum / bare;
         let ratio_err = g_err / bare + ratio * bare_err / bare;
         sqrt_estimate(ratio, ratio_err, Termination::Converged)
@@ -1057,13 +1268,9 @@ fn evaluate_on(
         tau_rms_interface,
         e_eff_over_e_film,
         low_octave_share,
-        kernel_evaluations: evaluations,
+        kernel_evaluations: evaluations + near_evaluations,
         // Here: this grid's nodes that evaluated f, g (the caller adds up the grids tried).
-        interface_kernel_evaluations: if need_fg {
-            n_fg + graded.map_or(0, |g| g.evaluations())
-        } else {
-            0
-        },
+        interface_kernel_evaluations: if need_fg { n_fg + near_evaluations } else { 0 },
     }))
 }
 
