@@ -124,6 +124,9 @@ struct Grid {
     /// Per panel: width in u and left end.
     width: Vec<f64>,
     left: Vec<f64>,
+    /// Per panel: ln W at its left end when the spectrum is a piecewise power law (W is then
+    /// e^{lw + β(u − left)} on the panel), else empty.
+    lw_left: Vec<f64>,
     /// Number of panels below 2 q_L.
     low_octave_panels: usize,
     /// ∫W du and its error estimate (E_eff's denominator).
@@ -175,28 +178,36 @@ impl Grid {
             partial_curv: vec![],
             width: vec![],
             left: vec![],
+            lw_left: vec![],
             low_octave_panels: 0,
             bare: (0.0, 0.0),
             dd: vec![],
         };
         let ln_w = |u: f64| 4.0 * u + spectrum.c(u.exp()).ln();
-        for pair in knots.windows(2) {
-            let (ua, ub) = (pair[0].ln(), pair[1].ln());
+        // Between knots of a piecewise power law, ln W is linear in u and W_ref = W (ρ = 1).
+        let power_law = spectrum.is_piecewise_power_law();
+        let ln_knots: Vec<f64> = knots.iter().map(|k| k.ln()).collect();
+        let lw_knots: Vec<f64> = knots
+            .iter()
+            .zip(&ln_knots)
+            .map(|(&k, &u)| 4.0 * u + spectrum.c(k).ln())
+            .collect();
+        let (mut ends, mut lw) = (vec![], vec![]);
+        for (i, uu) in ln_knots.windows(2).enumerate() {
+            let (ua, ub) = (uu[0], uu[1]);
+            let (lwa, lwb) = (lw_knots[i], lw_knots[i + 1]);
             let n = (((ub - ua) / h_max).ceil() as usize).max(1);
             let h = (ub - ua) / n as f64;
             // Ends of sub-panels: exact knots at both ends, interior points equally spaced.
-            let ends: Vec<f64> = (0..=n)
-                .map(|i| if i == n { ub } else { ua + i as f64 * h })
-                .collect();
-            let lw: Vec<f64> = ends
-                .iter()
-                .enumerate()
-                .map(|(i, &u)| match i {
-                    0 => 4.0 * ua + spectrum.c(pair[0]).ln(),
-                    i if i == n => 4.0 * ub + spectrum.c(pair[1]).ln(),
-                    _ => ln_w(u),
-                })
-                .collect();
+            ends.clear();
+            ends.extend((0..=n).map(|i| if i == n { ub } else { ua + i as f64 * h }));
+            lw.clear();
+            lw.extend(ends.iter().enumerate().map(|(i, &u)| match i {
+                0 => lwa,
+                i if i == n => lwb,
+                _ if power_law => lwa + (lwb - lwa) * (u - ua) / (ub - ua),
+                _ => ln_w(u),
+            }));
             for i in 0..n {
                 let (a, b) = (ends[i], ends[i + 1]);
                 let width = b - a;
@@ -223,9 +234,14 @@ impl Grid {
                     g.q.push(q);
                     g.u.push(u);
                     g.w.push(rule.w[k] * scale);
-                    let lw_u = ln_w(u);
-                    g.rho.push((lw_u - w_ref).exp());
-                    g.w_at.push(lw_u.exp());
+                    if power_law {
+                        g.rho.push(1.0);
+                        g.w_at.push(w_ref.exp());
+                    } else {
+                        let lw_u = ln_w(u);
+                        g.rho.push((lw_u - w_ref).exp());
+                        g.w_at.push(lw_u.exp());
+                    }
                 }
                 // partial[j][k]: G from the panel's left end to ascending node j, per ascending node k.
                 let mut partial = [[0.0; 2]; 2];
@@ -252,6 +268,9 @@ impl Grid {
                 g.err4.push(rule.err4 * scale * width.powi(4));
                 g.width.push(width);
                 g.left.push(a);
+                if power_law {
+                    g.lw_left.push(lwa);
+                }
                 if b <= q_oct.ln() + 1e-12 {
                     g.low_octave_panels += 1;
                 }
@@ -260,22 +279,37 @@ impl Grid {
         g.dd = (0..g.u.len())
             .map(|s| {
                 let u = &g.u[s..(s + 5).min(g.u.len())];
+                // 1/(u_m − u_l) once per pair of the window.
+                let mut inv = [[0.0; 5]; 5];
+                for m in 0..u.len() {
+                    for l in 0..m {
+                        inv[m][l] = 1.0 / (u[m] - u[l]);
+                        inv[l][m] = -inv[m][l];
+                    }
+                }
                 std::array::from_fn(|row| {
                     let k = row + 1;
                     std::array::from_fn(|m| {
                         if k >= u.len() || m > k {
                             return 0.0;
                         }
-                        (0..=k)
-                            .filter(|&l| l != m)
-                            .map(|l| 1.0 / (u[m] - u[l]))
-                            .product()
+                        (0..=k).filter(|&l| l != m).map(|l| inv[m][l]).product()
                     })
                 })
             })
             .collect();
         g.bare = g.bare_integral();
         g
+    }
+
+    /// W = q⁴C at q = e^u: from the panel's power law when there is one, else from the spectrum.
+    fn w_at_u(&self, spectrum: &Spectrum, u: f64) -> f64 {
+        if self.lw_left.is_empty() {
+            let q = u.exp();
+            return q.powi(4) * spectrum.c(q);
+        }
+        let p = self.left.partition_point(|&l| l <= u).saturating_sub(1);
+        (self.lw_left[p] + self.beta[p] * (u - self.left[p])).exp()
     }
 
     /// The divided difference f[u_s, …, u_{s+k}] (k ≤ 4, s + k within the grid).
@@ -553,7 +587,7 @@ impl Graded {
                 }
             })
             .collect();
-        let w_of = |q: f64| q.powi(4) * spectrum.c(q);
+        let w_of = |q: f64| grid.w_at_u(spectrum, q.ln());
         let gl_panel = |a: f64, b: f64, n: usize| {
             let half = 0.5 * (b - a);
             let at = |x: f64| q_l * (a + half * (x + 1.0)).exp();
@@ -1382,5 +1416,32 @@ impl NormalStress {
             (hi - lo) + 1e-12 * hi,
             Termination::Converged,
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::psd::Tabulated;
+
+    /// W from the grid's panel power laws equals q⁴C(q) from the spectrum, inside knot intervals
+    /// split by the panel width or not.
+    #[test]
+    fn panel_power_law_is_the_spectrum() {
+        let q: Vec<f64> = (0..40).map(|i| 1e4 * 1.3f64.powi(i)).collect();
+        let c: Vec<f64> = q
+            .iter()
+            .enumerate()
+            .map(|(i, &q)| q.powf(-3.6) * (1.0 + 0.5 * (i as f64).sin()))
+            .collect();
+        let spectrum = Spectrum::Tabulated(Tabulated::new(q.clone(), c).unwrap());
+        let grid = Grid::new(&spectrum, 0.1);
+        let (u0, u1) = (q[0].ln(), q[39].ln());
+        for i in 0..=1000 {
+            let u = u0 + (u1 - u0) * i as f64 / 1000.0;
+            let want = u.exp().powi(4) * spectrum.c(u.exp());
+            let got = grid.w_at_u(&spectrum, u);
+            assert!((got / want - 1.0).abs() < 1e-12, "u = {u}: {got} vs {want}");
+        }
     }
 }

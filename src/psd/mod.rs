@@ -237,6 +237,12 @@ impl Spectrum {
     }
 
     /// Knots: points between which ln C is smooth (data points, q0, q_r, q1, or steps of Q/2).
+    /// Whether C is a power law between consecutive [`knots`](Self::knots) (tabulated and
+    /// self-affine spectra; not the Gaussian band).
+    pub fn is_piecewise_power_law(&self) -> bool {
+        !matches!(self, Spectrum::Gaussian(_))
+    }
+
     pub fn knots(&self) -> Vec<f64> {
         match self {
             Spectrum::Tabulated(t) => t.q.clone(),
