@@ -1,13 +1,16 @@
 //! Benchmark of `coatcheck check` on the 1000-point measured PSD (examples/measured-rolloff.*):
-//! the median time of a full check with d_min in-process, of the bond-shear check alone, and of
-//! the whole command (process start, reading, output) when the release binary exists.
+//! the median time of a full check with d_min in-process, of the bond-shear check alone, of the
+//! steps around the engine (scene and materials, PSD file, report), and of the whole command
+//! (process start, reading, output) beside the process floor (`coatcheck --version`) and
+//! `coatcheck materials`, when the release binary exists next to this example's target dir.
 //!
 //! Run: `cargo build --release && cargo run --release --example bench_check`
 
 use coatcheck::check::{Checker, Checks};
 use coatcheck::material::Library;
+use coatcheck::report;
 use coatcheck::scene::Scene;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 fn median(mut v: Vec<Duration>) -> Duration {
@@ -94,22 +97,67 @@ fn main() {
         }),
     ));
 
-    let bin = root.join("target/release/coatcheck");
-    if Path::new(&bin).exists() {
-        for (label, extra) in [
-            ("whole command, full check + d_min", vec![]),
+    rows.push((
+        "scene file and its materials (fresh library)".into(),
+        time(reps, || {
+            let lib = Library::builtin().unwrap();
+            Scene::load(Some(&scene_path), &[], &lib).unwrap();
+        }),
+    ));
+    rows.push((
+        "PSD file to spectrum (read, validate, rms slope)".into(),
+        time(reps, || {
+            scene.roughness.spectrum().unwrap();
+        }),
+    ));
+    let outcome = c.run(d).unwrap();
+    rows.push((
+        "report: tables".into(),
+        time(reps, || {
+            report::human(&scene, &outcome);
+        }),
+    ));
+    rows.push((
+        "report: JSON".into(),
+        time(reps, || {
+            report::json(&scene, &outcome).to_string();
+        }),
+    ));
+
+    // The release binary of the same target dir: <target>/release/examples/bench_check.
+    let bin = std::env::current_exe()
+        .ok()
+        .and_then(|e| Some(e.parent()?.parent()?.join("coatcheck")))
+        .filter(|b| b.exists());
+    if let Some(bin) = bin {
+        for (label, args) in [
+            (
+                "process floor: coatcheck --version",
+                vec!["--version".to_string()],
+            ),
+            (
+                "coatcheck materials (library listing)",
+                vec!["materials".into()],
+            ),
+            (
+                "whole command, full check + d_min",
+                vec!["check".into(), scene_path.display().to_string()],
+            ),
             (
                 "whole command, --checks bond-shear",
-                vec!["--checks", "bond-shear"],
+                vec![
+                    "check".into(),
+                    scene_path.display().to_string(),
+                    "--checks".into(),
+                    "bond-shear".into(),
+                ],
             ),
         ] {
             rows.push((
                 label.into(),
                 time(50, || {
                     let o = std::process::Command::new(&bin)
-                        .arg("check")
-                        .arg(&scene_path)
-                        .args(&extra)
+                        .args(&args)
                         .output()
                         .unwrap();
                     assert!(o.status.code().is_some_and(|c| c <= 1));
@@ -117,7 +165,7 @@ fn main() {
             ));
         }
     } else {
-        println!("(no target/release/coatcheck: run `cargo build --release` to time the command)");
+        println!("(no release coatcheck binary: run `cargo build --release` to time the command)");
     }
     println!(
         "1000-point measured PSD, median of up to {reps} repetitions; d_min used {evals} engine evaluations"

@@ -18,6 +18,7 @@ use crate::units::Dim;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 /// The version of the material file format this build reads.
 pub const SCHEMA_VERSION: i64 = 1;
@@ -243,10 +244,18 @@ pub fn parse_entry(text: &str, path: &Path) -> Result<Entry, Error> {
 }
 
 /// The materials and bonds known to a run, by name.
+///
+/// The bundled files are parsed on first use, each once: a check names two or three entries,
+/// and parsing all twenty took a third of a millisecond of the command's start-up. Entries
+/// added with [`Library::insert`] or [`Library::add_dir`] override bundled ones of the same
+/// name, of either kind.
 #[derive(Debug, Clone, Default)]
 pub struct Library {
-    materials: BTreeMap<String, Material>,
-    bonds: BTreeMap<String, Bond>,
+    /// One slot per [`BUILTIN`] file (none in an empty library), filled on first lookup; a
+    /// bundled file that does not parse keeps its error message (the unit tests parse them all).
+    bundled: Vec<OnceLock<Result<Entry, String>>>,
+    /// Inserted entries, by key.
+    added: BTreeMap<String, Entry>,
 }
 
 /// Lookup key: lower case, with `_` and spaces read as `-`.
@@ -259,13 +268,13 @@ fn key(name: &str) -> String {
 }
 
 impl Library {
-    /// The bundled library.
+    /// The bundled library. Its files are parsed when first looked up, so a bundled file that
+    /// does not parse fails that lookup (or [`Library::entries`]), not this call.
     pub fn builtin() -> Result<Self, Error> {
-        let mut lib = Library::default();
-        for (file, text) in BUILTIN {
-            lib.insert(parse_entry(text, &PathBuf::from("materials").join(file))?);
-        }
-        Ok(lib)
+        Ok(Library {
+            bundled: BUILTIN.iter().map(|_| OnceLock::new()).collect(),
+            added: BTreeMap::new(),
+        })
     }
 
     /// The bundled library plus (overriding) every `*.toml` file in `dir`.
@@ -301,51 +310,91 @@ impl Library {
 
     /// Add an entry, replacing one of the same name (of either kind).
     pub fn insert(&mut self, entry: Entry) {
-        let k = key(entry.name());
-        self.materials.remove(&k);
-        self.bonds.remove(&k);
-        match entry {
-            Entry::Material(m) => {
-                self.materials.insert(k, m);
-            }
-            Entry::Bond(b) => {
-                self.bonds.insert(k, b);
-            }
+        self.added.insert(key(entry.name()), entry);
+    }
+
+    /// The keys of the bundled files this library has, in [`BUILTIN`] order (a bundled file is
+    /// named after its entry, a unit test).
+    fn bundled_keys(&self) -> impl Iterator<Item = &str> {
+        BUILTIN
+            .iter()
+            .take(self.bundled.len())
+            .map(|(file, _)| file.trim_end_matches(".toml"))
+    }
+
+    /// Bundled file `i`, parsed (once).
+    fn parsed(&self, i: usize) -> Result<&Entry, String> {
+        let (file, text) = BUILTIN[i];
+        self.bundled[i]
+            .get_or_init(|| {
+                parse_entry(text, &PathBuf::from("materials").join(file)).map_err(|e| e.to_string())
+            })
+            .as_ref()
+            .map_err(Clone::clone)
+    }
+
+    /// The entry under key `k`: an inserted one, else the bundled one.
+    fn find(&self, k: &str) -> Result<Option<&Entry>, String> {
+        if let Some(e) = self.added.get(k) {
+            return Ok(Some(e));
+        }
+        match self.bundled_keys().position(|bk| bk == k) {
+            Some(i) => self.parsed(i).map(Some),
+            None => Ok(None),
         }
     }
 
-    /// All elastic materials, by name.
-    pub fn materials(&self) -> impl Iterator<Item = &Material> {
-        self.materials.values()
+    /// Every entry, materials then bonds, each sorted by name (parses every bundled file).
+    pub fn entries(&self) -> Result<Vec<&Entry>, Error> {
+        let mut all: BTreeMap<(bool, &str), &Entry> = BTreeMap::new();
+        for (i, k) in self.bundled_keys().enumerate() {
+            if self.added.contains_key(k) {
+                continue;
+            }
+            let e = self.parsed(i).map_err(|msg| Error::Value {
+                origin: "bundled materials library".into(),
+                msg,
+            })?;
+            all.insert((matches!(e, Entry::Bond(_)), k), e);
+        }
+        for (k, e) in &self.added {
+            all.insert((matches!(e, Entry::Bond(_)), k), e);
+        }
+        Ok(all.into_values().collect())
     }
 
-    /// All bonds, by name.
-    pub fn bonds(&self) -> impl Iterator<Item = &Bond> {
-        self.bonds.values()
+    /// The names of one kind's entries that parse, for error messages (parses every bundled
+    /// file).
+    fn names(&self, bond: bool) -> Vec<String> {
+        let mut names: Vec<String> = self
+            .bundled_keys()
+            .chain(self.added.keys().map(String::as_str))
+            .filter(|k| matches!(self.find(k), Ok(Some(e)) if matches!(e, Entry::Bond(_)) == bond))
+            .map(str::to_string)
+            .collect();
+        names.sort();
+        names.dedup();
+        names
     }
 
     /// An elastic material by name; the error names it and lists close names.
     pub fn material(&self, name: &str) -> Result<&Material, String> {
-        self.materials.get(&key(name)).ok_or_else(|| {
-            let what = if self.bonds.contains_key(&key(name)) {
-                "is a bond, not an elastic material"
-            } else {
-                "is not in the materials library"
-            };
-            unknown(name, what, self.materials.keys())
-        })
+        let what = match self.find(&key(name))? {
+            Some(Entry::Material(m)) => return Ok(m),
+            Some(Entry::Bond(_)) => "is a bond, not an elastic material",
+            None => "is not in the materials library",
+        };
+        Err(unknown(name, what, self.names(false).iter()))
     }
 
     /// A bond by name; the error names it and lists close names.
     pub fn bond(&self, name: &str) -> Result<&Bond, String> {
-        self.bonds.get(&key(name)).ok_or_else(|| {
-            let what = if self.materials.contains_key(&key(name)) {
-                "is an elastic material, not a bond"
-            } else {
-                "is not in the materials library"
-            };
-            unknown(name, what, self.bonds.keys())
-        })
+        let what = match self.find(&key(name))? {
+            Some(Entry::Bond(b)) => return Ok(b),
+            Some(Entry::Material(_)) => "is an elastic material, not a bond",
+            None => "is not in the materials library",
+        };
+        Err(unknown(name, what, self.names(true).iter()))
     }
 }
 
@@ -407,6 +456,11 @@ mod tests {
             assert_eq!(&on_disk, text);
             let e = parse_entry(text, Path::new(file)).unwrap();
             assert_eq!(format!("{}.toml", e.name()), *file);
+            assert_eq!(
+                key(e.name()),
+                e.name(),
+                "{file}: the lookup key is the name"
+            );
         }
         let index = std::fs::read_to_string(dir.join("README.md")).unwrap();
         for (file, _) in BUILTIN {
@@ -545,5 +599,55 @@ mod tests {
         let lib = Library::with_dir(Some(dir.path())).unwrap();
         assert_eq!(lib.bond("epoxy").unwrap().shear_strength, 2e7);
         assert!(lib.material("paper-rubber").is_ok());
+        // An override may change the kind; the listing has the name once, as the new kind.
+        std::fs::write(
+            dir.path().join("epoxy.toml"),
+            "schema_version = 1\nname = \"Epoxy\"\nkind = \"film\"\nyoungs_modulus = \"3 GPa\"\npoisson_ratio = 0.35\nsource = \"my test\"\n",
+        )
+        .unwrap();
+        let lib = Library::with_dir(Some(dir.path())).unwrap();
+        assert_eq!(lib.material("epoxy").unwrap().elastic.youngs, 3e9);
+        let e = lib.bond("epoxy").unwrap_err();
+        assert!(
+            e.contains("is an elastic material") && !e.contains("epoxy,"),
+            "{e}"
+        );
+        let names: Vec<&str> = lib.entries().unwrap().iter().map(|e| e.name()).collect();
+        assert_eq!(
+            names
+                .iter()
+                .filter(|n| n.eq_ignore_ascii_case("epoxy"))
+                .count(),
+            1
+        );
+    }
+
+    #[test]
+    fn the_listing_has_every_bundled_entry_materials_first_each_sorted() {
+        let lib = Library::builtin().unwrap();
+        // A lookup first: the listing takes parsed and unparsed files alike.
+        lib.bond("epoxy").unwrap();
+        let entries = lib.entries().unwrap();
+        assert_eq!(entries.len(), BUILTIN.len());
+        let kinds: Vec<bool> = entries
+            .iter()
+            .map(|e| matches!(e, Entry::Bond(_)))
+            .collect();
+        assert!(kinds.is_sorted(), "materials, then bonds");
+        for w in entries.windows(2) {
+            if kinds_eq(w[0], w[1]) {
+                assert!(w[0].name() < w[1].name(), "{} {}", w[0].name(), w[1].name());
+            }
+        }
+        for (file, text) in BUILTIN {
+            let e = parse_entry(text, Path::new(file)).unwrap();
+            assert!(entries.contains(&&e), "{file}");
+        }
+        assert!(Library::default().entries().unwrap().is_empty());
+        assert!(Library::default().material("epoxy").is_err());
+    }
+
+    fn kinds_eq(a: &Entry, b: &Entry) -> bool {
+        matches!(a, Entry::Bond(_)) == matches!(b, Entry::Bond(_))
     }
 }

@@ -1,7 +1,7 @@
 //! `coatcheck materials`: list the materials library.
 
 use coatcheck::Error;
-use coatcheck::material::Library;
+use coatcheck::material::{Entry, Library};
 use coatcheck::report::sig;
 use comfy_table::{ContentArrangement, Table, presets::UTF8_FULL_CONDENSED};
 use std::path::PathBuf;
@@ -23,27 +23,27 @@ pub fn run(args: MaterialsArgs) -> Result<i32, Error> {
         .set_width(120)
         .set_header(["name", "kind", "E [MPa]", "nu", "strength [MPa]", "source"]);
     let mpa = |x: f64| sig(x * 1e-6, 4);
-    for m in lib.materials() {
-        t.add_row(vec![
-            m.name.clone(),
-            m.kind.to_string(),
-            mpa(m.elastic.youngs),
-            m.elastic.poisson.to_string(),
-            m.yield_strength
-                .map(|y| format!("yield {}", mpa(y)))
-                .unwrap_or_else(|| "-".into()),
-            m.source.clone(),
-        ]);
-    }
-    for b in lib.bonds() {
-        t.add_row(vec![
-            b.name.clone(),
-            "bond".into(),
-            "-".into(),
-            "-".into(),
-            format!("shear {}", mpa(b.shear_strength)),
-            b.source.clone(),
-        ]);
+    for e in lib.entries()? {
+        t.add_row(match e {
+            Entry::Material(m) => vec![
+                m.name.clone(),
+                m.kind.to_string(),
+                mpa(m.elastic.youngs),
+                m.elastic.poisson.to_string(),
+                m.yield_strength
+                    .map(|y| format!("yield {}", mpa(y)))
+                    .unwrap_or_else(|| "-".into()),
+                m.source.clone(),
+            ],
+            Entry::Bond(b) => vec![
+                b.name.clone(),
+                "bond".into(),
+                "-".into(),
+                "-".into(),
+                format!("shear {}", mpa(b.shear_strength)),
+                b.source.clone(),
+            ],
+        });
     }
     super::check::emit(&format!("{t}\n"));
     Ok(0)

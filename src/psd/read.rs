@@ -132,16 +132,42 @@ impl Sep {
 
     /// Split a line into trimmed fields (surrounding double quotes removed).
     pub(crate) fn split<'a>(&self, line: &'a str) -> Vec<&'a str> {
-        let unquote = |f: &'a str| {
-            let f = f.trim();
-            f.strip_prefix('"')
-                .and_then(|g| g.strip_suffix('"'))
-                .unwrap_or(f)
-                .trim()
-        };
         match self {
             Sep::Char(c) => line.split(*c).map(unquote).collect(),
             Sep::Whitespace => line.split_whitespace().map(unquote).collect(),
+        }
+    }
+
+    /// Fields `a` and `b` of a line as [`Sep::split`] gives them, when it has at least `need`
+    /// (> a, b) fields; without collecting the line (the rows of a 1000-line file).
+    pub(crate) fn pick<'a>(
+        &self,
+        line: &'a str,
+        a: usize,
+        b: usize,
+        need: usize,
+    ) -> Option<(&'a str, &'a str)> {
+        fn first<'a>(
+            mut fields: impl Iterator<Item = &'a str>,
+            a: usize,
+            b: usize,
+            need: usize,
+        ) -> Option<(&'a str, &'a str)> {
+            let (mut fa, mut fb) = ("", "");
+            for i in 0..need {
+                let f = unquote(fields.next()?);
+                if i == a {
+                    fa = f;
+                }
+                if i == b {
+                    fb = f;
+                }
+            }
+            Some((fa, fb))
+        }
+        match self {
+            Sep::Char(c) => first(line.split(*c), a, b, need),
+            Sep::Whitespace => first(line.split_whitespace(), a, b, need),
         }
     }
 
@@ -155,6 +181,15 @@ impl Sep {
             Err(_) => None,
         }
     }
+}
+
+/// A field trimmed, with surrounding double quotes removed.
+fn unquote(f: &str) -> &str {
+    let f = f.trim();
+    f.strip_prefix('"')
+        .and_then(|g| g.strip_suffix('"'))
+        .unwrap_or(f)
+        .trim()
 }
 
 /// The content lines of a text (1-based line number, text without line end), skipping blank
@@ -438,26 +473,24 @@ pub fn parse_spectrum(
     let mut last_line = first_line;
     for (ln, line) in lines {
         last_line = ln;
-        let fields = sep.split(line);
-        if fields.len() < need {
+        let Some((q_text, c_text)) = sep.pick(line, qi, ci, need) else {
             return Err(err(
                 ln,
                 format!(
                     "expected at least {need} columns (q in column {}, C in column {}), found {}",
                     qi + 1,
                     ci + 1,
-                    fields.len()
+                    sep.split(line).len()
                 ),
             ));
-        }
-        let value = |i: usize, what: &str| -> Result<f64, Error> {
-            let v = sep.number(fields[i]).ok_or_else(|| {
+        };
+        let value = |i: usize, field: &str, what: &str| -> Result<f64, Error> {
+            let v = sep.number(field).ok_or_else(|| {
                 err(
                     ln,
                     format!(
-                        "expected a number for {what} in column {}, found '{}'",
-                        i + 1,
-                        fields[i]
+                        "expected a number for {what} in column {}, found '{field}'",
+                        i + 1
                     ),
                 )
             })?;
@@ -465,23 +498,21 @@ pub fn parse_spectrum(
                 return Err(err(
                     ln,
                     format!(
-                        "{what} = {} in column {}; expected a finite value > 0",
-                        fields[i],
+                        "{what} = {field} in column {}; expected a finite value > 0",
                         i + 1
                     ),
                 ));
             }
             Ok(v)
         };
-        let q = value(qi, "q")? * q_scale;
-        let c = value(ci, "C")? * c_scale;
+        let q = value(qi, q_text, "q")? * q_scale;
+        let c = value(ci, c_text, "C")? * c_scale;
         if !(q.is_finite() && q > 0.0 && c.is_finite() && c > 0.0) {
             return Err(err(
                 ln,
                 format!(
-                    "q = {}, C = {} are q = {q:e} 1/m, C = {c:e} m^4 in SI units, outside the \
-                     floating-point range; expected values that are finite and > 0 in SI",
-                    fields[qi], fields[ci]
+                    "q = {q_text}, C = {c_text} are q = {q:e} 1/m, C = {c:e} m^4 in SI units, \
+                     outside the floating-point range; expected values that are finite and > 0 in SI"
                 ),
             ));
         }
@@ -564,4 +595,41 @@ pub fn parse_spectrum(
         }
     };
     Ok((spectrum, warnings))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pick_gives_the_fields_split_gives() {
+        let lines = [
+            "1e5,2e-20",
+            " 1e5 , \"2e-20\" ,x",
+            "1e5;2,5e-20;;",
+            "a\tb\t\tc",
+            "  1e5   2e-20  3 ",
+            "\"q\" \"C\"",
+            "",
+            ",",
+            "1e5",
+        ];
+        for line in lines {
+            for sep in [
+                Sep::Char(','),
+                Sep::Char(';'),
+                Sep::Char('\t'),
+                Sep::Whitespace,
+            ] {
+                let all = sep.split(line);
+                for need in 1..5 {
+                    for (a, b) in (0..need).flat_map(|a| (0..need).map(move |b| (a, b))) {
+                        let got = sep.pick(line, a, b, need);
+                        let want = (all.len() >= need).then(|| (all[a], all[b]));
+                        assert_eq!(got, want, "{line:?} {sep:?} need {need} ({a}, {b})");
+                    }
+                }
+            }
+        }
+    }
 }
