@@ -370,14 +370,15 @@ impl Checker {
             ));
         }
         let (q_low, q_high) = spectrum.support();
+        let engine = Engine::new(spectrum, settings);
+        // The search engine shares the design engine's grids where they coincide, and its
+        // kernel tables.
+        let search = engine.sibling(Settings {
+            rtol: settings.rtol.max(crate::prec::SEARCH_RTOL),
+        });
         Ok(Self {
-            engine: Engine::new(spectrum, settings),
-            search: Engine::new(
-                spectrum,
-                Settings {
-                    rtol: settings.rtol.max(crate::prec::SEARCH_RTOL),
-                },
-            ),
+            engine,
+            search,
             design,
             q_low,
             q_high,

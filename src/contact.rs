@@ -133,8 +133,17 @@ struct Grid {
     dd: Vec<[[f64; 5]; 4]>,
 }
 
-impl Grid {
-    fn new(spectrum: &Spectrum, h_max: f64) -> Grid {
+/// The grid's knots: the spectrum's own, with 2 q_L inserted, and how many panels each knot
+/// interval is split into for panels no wider than `h_max` in ln q. Grids of equal splits are
+/// equal, whatever the h_max (engines of one spectrum share them: [`Engine::sibling`]).
+struct Knots {
+    q: Vec<f64>,
+    q_oct: f64,
+    splits: Vec<u32>,
+}
+
+impl Knots {
+    fn new(spectrum: &Spectrum, h_max: f64) -> Knots {
         // Knots within rounding of their successor (e.g. a Gaussian band's last stepped knot
         // landing 1 ulp below the support's end) would make a panel of width ~1e-16 whose error
         // estimate is 0·∞ = NaN; keep the later one.
@@ -162,19 +171,41 @@ impl Grid {
         } else if q_oct < *knots.last().unwrap() {
             knots.insert(at, q_oct);
         }
+        let splits = knots
+            .windows(2)
+            .map(|w| ((w[1].ln() - w[0].ln()) / h_max).ceil().max(1.0) as u32)
+            .collect();
+        Knots {
+            q: knots,
+            q_oct,
+            splits,
+        }
+    }
+}
+
+impl Grid {
+    fn new(spectrum: &Spectrum, knots: &Knots) -> Grid {
+        let Knots {
+            q: knots,
+            q_oct,
+            splits,
+        } = knots;
+        let q_oct = *q_oct;
+        let panels: usize = splits.iter().map(|&n| n as usize).sum();
+        let nodes = 2 * panels;
         let mut g = Grid {
-            q: vec![],
-            u: vec![],
-            w: vec![],
-            rho: vec![],
-            w_at: vec![],
-            beta: vec![],
-            err4: vec![],
-            partial: vec![],
-            partial_curv: vec![],
-            width: vec![],
-            left: vec![],
-            lw_left: vec![],
+            q: Vec::with_capacity(nodes),
+            u: Vec::with_capacity(nodes),
+            w: Vec::with_capacity(nodes),
+            rho: Vec::with_capacity(nodes),
+            w_at: Vec::with_capacity(nodes),
+            beta: Vec::with_capacity(panels),
+            err4: Vec::with_capacity(panels),
+            partial: Vec::with_capacity(panels),
+            partial_curv: Vec::with_capacity(panels),
+            width: Vec::with_capacity(panels),
+            left: Vec::with_capacity(panels),
+            lw_left: Vec::with_capacity(panels),
             low_octave_panels: 0,
             bare: (0.0, 0.0),
             dd: vec![],
@@ -192,7 +223,7 @@ impl Grid {
         for (i, uu) in ln_knots.windows(2).enumerate() {
             let (ua, ub) = (uu[0], uu[1]);
             let (lwa, lwb) = (lw_knots[i], lw_knots[i + 1]);
-            let n = (((ub - ua) / h_max).ceil() as usize).max(1);
+            let n = splits[i] as usize;
             let h = (ub - ua) / n as f64;
             // Ends of sub-panels: exact knots at both ends, interior points equally spaced.
             ends.clear();
@@ -744,8 +775,16 @@ impl Graded {
 pub struct Engine {
     spectrum: Spectrum,
     settings: Settings,
-    grids: [OnceLock<Grid>; MAX_REFINE + 1],
+    grids: [OnceLock<Arc<Grid>>; MAX_REFINE + 1],
     graded: [OnceLock<Graded>; MAX_REFINE + 1],
+    shared: Arc<Shared>,
+}
+
+/// What engines of one spectrum share ([`Engine::sibling`]).
+#[derive(Default)]
+struct Shared {
+    /// Grids built so far, by their knot splits.
+    grids: Mutex<Vec<(Vec<u32>, Arc<Grid>)>>,
     /// The kernel table of the last material pair evaluated (d-independent; rebuilt, wider, when
     /// a thickness needs q·d outside it).
     table: Mutex<Option<Arc<KernelTable>>>,
@@ -823,7 +862,20 @@ impl Engine {
             settings,
             grids: Default::default(),
             graded: Default::default(),
-            table: Mutex::new(None),
+            shared: Arc::default(),
+        }
+    }
+
+    /// An engine for the same spectrum with other settings, sharing this one's grids (where its
+    /// panel width splits the knot intervals alike, as on a spectrum with dense points) and
+    /// kernel tables: a check's search engine at a looser rtol costs no second set-up.
+    pub fn sibling(&self, settings: Settings) -> Self {
+        Self {
+            spectrum: self.spectrum.clone(),
+            settings,
+            grids: Default::default(),
+            graded: Default::default(),
+            shared: Arc::clone(&self.shared),
         }
     }
 
@@ -832,7 +884,7 @@ impl Engine {
         let (q_lo, q_hi) = (self.spectrum.q_low(), self.spectrum.support().1);
         let d = stack.thickness;
         let (x_min, x_max) = (q_lo * d, q_hi * d);
-        let mut cache = self.table.lock().unwrap_or_else(|e| e.into_inner());
+        let mut cache = self.shared.table.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(t) = cache
             .as_ref()
             .filter(|t| t.layers() == &stack.layers && t.covers(x_min, x_max))
@@ -859,10 +911,17 @@ impl Engine {
 
     fn grid(&self, level: usize) -> &Grid {
         self.grids[level].get_or_init(|| {
-            Grid::new(
+            let knots = Knots::new(
                 &self.spectrum,
                 panel_width(self.settings.rtol) / (1 << level) as f64,
-            )
+            );
+            let mut grids = self.shared.grids.lock().unwrap_or_else(|e| e.into_inner());
+            if let Some((_, g)) = grids.iter().find(|(s, _)| *s == knots.splits) {
+                return Arc::clone(g);
+            }
+            let g = Arc::new(Grid::new(&self.spectrum, &knots));
+            grids.push((knots.splits, Arc::clone(&g)));
+            g
         })
     }
 
@@ -1449,7 +1508,7 @@ mod tests {
             .map(|(i, &q)| q.powf(-3.6) * (1.0 + 0.5 * (i as f64).sin()))
             .collect();
         let spectrum = Spectrum::Tabulated(Tabulated::new(q.clone(), c).unwrap());
-        let grid = Grid::new(&spectrum, 0.1);
+        let grid = Grid::new(&spectrum, &Knots::new(&spectrum, 0.1));
         let (u0, u1) = (q[0].ln(), q[39].ln());
         for i in 0..=1000 {
             let u = u0 + (u1 - u0) * i as f64 / 1000.0;
