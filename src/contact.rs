@@ -502,7 +502,8 @@ struct GlPanel {
 
 /// The interface quadrature near q_L, where P(G(u)) ∝ (u − u_L)^{-1/2} once G ≫ p0²: panels
 /// shrinking towards q_L (each half as wide as its distance to q_L, split at the spectrum's knots),
-/// 6-point Gauss–Legendre on each (error: the difference to 5 points), and the innermost
+/// n-point Gauss–Legendre on each (n = 6 next to q_L, fewer further out: [`graded_nodes`];
+/// error: the difference to n − 1 points), and the innermost
 /// [u_L, u_L + 1e-11] in closed form, ∫_0^{G} P dG being known exactly.
 ///
 /// Where G stays below (p0/2)²/36 the contact probability is erf(≥ 6) = 1 in f64 and the
