@@ -439,11 +439,14 @@ impl Grid {
 
 /// Relative error of the n-point Gauss–Legendre rule on ∫ x^{-1/2} dx over a panel at ρ times
 /// its width from the singular point, ≈ C_n (2ρ + 1)^{−2n}: C_n fitted to 30-digit evaluations for
-/// n = 2..5 at ρ = 1..64 (within a factor 2 there). P(G(u)) behaves so near q_L.
+/// n = 2..7 at ρ = 1..64 (within a factor 1.3 there). P(G(u)) behaves so near q_L.
 fn graded_rule_error(n: usize, rho: f64) -> f64 {
-    const C: [f64; 6] = [0.0, 0.0, 0.024, 5.2e-3, 1.2e-3, 2.9e-4];
-    C[n.min(5)] * (2.0 * rho + 1.0).powi(-2 * n as i32)
+    const C: [f64; GL_MAX + 1] = [0.0, 0.0, 0.024, 5.2e-3, 1.2e-3, 2.9e-4, 7.0e-5, 1.7e-5];
+    C[n.min(GL_MAX)] * (2.0 * rho + 1.0).powi(-2 * n as i32)
 }
+
+/// The most Gauss–Legendre nodes on a graded panel.
+const GL_MAX: usize = 7;
 
 /// The per-panel share of rtol a graded-region panel's (or the first base panels') error may
 /// take: their errors add up over panels whose integrals are each a small part of the total.
@@ -467,7 +470,7 @@ fn graded_span(rtol: f64) -> f64 {
 const SPAN_SHARE: f64 = 0.0025;
 
 /// Nodes of a graded panel at ρ times its width from q_L, over which the integrand also grows or
-/// decays like e^{βu} with βw = `z` (W's power law plus the kernels'): the fewest (3, 4 or 6)
+/// decays like e^{βu} with βw = `z` (W's power law plus the kernels'): the fewest (3 to [`GL_MAX`])
 /// whose companion rule (one node fewer, the error estimate) meets [`GRADED_SHARE`]·rtol on
 /// both. The m-point rule's relative error on e^{βu} is about (m!)⁴ z^{2m}/((2m+1)((2m)!)³)
 /// (1/4320 z⁴ for m = 2).
@@ -476,33 +479,32 @@ fn graded_nodes(rho: f64, z: f64, rtol: f64) -> usize {
         let fact = |k: i32| (1..=k).map(f64::from).product::<f64>();
         fact(m).powi(4) * z.abs().powi(2 * m) / (f64::from(2 * m + 1) * fact(2 * m).powi(3))
     };
-    [3, 4]
-        .into_iter()
+    (3..=GL_MAX)
         .find(|&n| graded_rule_error(n - 1, rho) + exp_error(n as i32 - 1) <= GRADED_SHARE * rtol)
-        .unwrap_or(6)
+        .unwrap_or(GL_MAX)
 }
 /// Width (in ln q) of the innermost piece above q_L, done in closed form.
 const INNER_WIDTH: f64 = 1e-11;
 
-/// One n-point Gauss–Legendre panel of the graded region (n ≤ 6), with an (n−1)-point companion
+/// One n-point Gauss–Legendre panel of the graded region (n ≤ [`GL_MAX`]), with an (n−1)-point companion
 /// rule for the error estimate. Weights include W = q⁴C at the node; `b`, `bc` integrate the
 /// n-node interpolant of the G integrand from the panel's left end to each node. Only the first
 /// n (n − 1) entries are used.
 struct GlPanel {
     n: usize,
-    q: [f64; 6],
-    u: [f64; 6],
-    w: [f64; 6],
-    b: [[f64; 6]; 6],
-    qc: [f64; 5],
-    uc: [f64; 5],
-    wc: [f64; 5],
-    bc: [[f64; 6]; 5],
+    q: [f64; GL_MAX],
+    u: [f64; GL_MAX],
+    w: [f64; GL_MAX],
+    b: [[f64; GL_MAX]; GL_MAX],
+    qc: [f64; GL_MAX - 1],
+    uc: [f64; GL_MAX - 1],
+    wc: [f64; GL_MAX - 1],
+    bc: [[f64; GL_MAX]; GL_MAX - 1],
 }
 
 /// The interface quadrature near q_L, where P(G(u)) ∝ (u − u_L)^{-1/2} once G ≫ p0²: panels
-/// shrinking towards q_L (each half as wide as its distance to q_L, split at the spectrum's knots),
-/// n-point Gauss–Legendre on each (n = 6 next to q_L, fewer further out: [`graded_nodes`];
+/// shrinking towards q_L (each as wide as its distance to q_L, split at the spectrum's knots),
+/// n-point Gauss–Legendre on each (n = 7 next to q_L at rtol 1e-8, fewer further out: [`graded_nodes`];
 /// error: the difference to n − 1 points), and the innermost
 /// [u_L, u_L + 1e-11] in closed form, ∫_0^{G} P dG being known exactly.
 ///
@@ -588,7 +590,6 @@ impl Graded {
         let mut delta = span;
         while delta > INNER_WIDTH {
             ends.push(delta);
-            ends.push(0.75 * delta);
             delta *= 0.5;
         }
         ends.push(delta);
@@ -600,10 +601,10 @@ impl Graded {
         );
         ends.sort_by(f64::total_cmp);
         ends.dedup_by(|a, b| (*a - *b).abs() <= 1e-14 * b.abs());
-        // Gauss–Legendre rules with 2..6 nodes, and the partial-integral matrices of the n-node
+        // Gauss–Legendre rules with 2..GL_MAX nodes, and the partial-integral matrices of the n-node
         // interpolant at the n nodes and at the n − 1 companion nodes.
-        let rules: Vec<(Vec<f64>, Vec<f64>)> = (0..=6).map(quad::gauss_legendre).collect();
-        let partials = |n: usize, at: &[f64]| -> [[f64; 6]; 6] {
+        let rules: Vec<(Vec<f64>, Vec<f64>)> = (0..=GL_MAX).map(quad::gauss_legendre).collect();
+        let partials = |n: usize, at: &[f64]| -> [[f64; GL_MAX]; GL_MAX] {
             let (x, w) = (&rules[n].0, &rules[n].1);
             std::array::from_fn(|j| {
                 std::array::from_fn(|k| match (at.get(j), k < n) {
@@ -612,19 +613,19 @@ impl Graded {
                 })
             })
         };
-        let bn: Vec<[[f64; 6]; 6]> = (0..=6)
+        let bn: Vec<[[f64; GL_MAX]; GL_MAX]> = (0..=GL_MAX)
             .map(|n| {
                 if n < 2 {
-                    [[0.0; 6]; 6]
+                    [[0.0; GL_MAX]; GL_MAX]
                 } else {
                     partials(n, &rules[n].0)
                 }
             })
             .collect();
-        let bcn: Vec<[[f64; 6]; 6]> = (0..=6)
+        let bcn: Vec<[[f64; GL_MAX]; GL_MAX]> = (0..=GL_MAX)
             .map(|n| {
                 if n < 2 {
-                    [[0.0; 6]; 6]
+                    [[0.0; GL_MAX]; GL_MAX]
                 } else {
                     partials(n, &rules[n - 1].0)
                 }
@@ -636,10 +637,11 @@ impl Graded {
             let at = |x: f64| q_l * (a + half * (x + 1.0)).exp();
             let (x, gw) = (&rules[n].0, &rules[n].1);
             let (xc, gwc) = (&rules[n - 1].0, &rules[n - 1].1);
-            let q: [f64; 6] = std::array::from_fn(|k| x.get(k).map_or(q_l, |&x| at(x)));
-            let qc: [f64; 5] = std::array::from_fn(|k| xc.get(k).map_or(q_l, |&x| at(x)));
-            let wq: [f64; 6] = std::array::from_fn(|k| if k < n { w_of(q[k]) } else { 0.0 });
-            let wqc: [f64; 5] = std::array::from_fn(|k| if k < n - 1 { w_of(qc[k]) } else { 0.0 });
+            let q: [f64; GL_MAX] = std::array::from_fn(|k| x.get(k).map_or(q_l, |&x| at(x)));
+            let qc: [f64; GL_MAX - 1] = std::array::from_fn(|k| xc.get(k).map_or(q_l, |&x| at(x)));
+            let wq: [f64; GL_MAX] = std::array::from_fn(|k| if k < n { w_of(q[k]) } else { 0.0 });
+            let wqc: [f64; GL_MAX - 1] =
+                std::array::from_fn(|k| if k < n - 1 { w_of(qc[k]) } else { 0.0 });
             GlPanel {
                 n,
                 q,
@@ -652,8 +654,8 @@ impl Graded {
                 bc: std::array::from_fn(|j| std::array::from_fn(|k| bcn[n][j][k] * half * wq[k])),
             }
         };
-        // Panels touching q_L's halving sequence (ρ < 4) keep 6 nodes; the knot-split panels
-        // further out need fewer.
+        // The halving sequence's panels (ρ = 1, or more where a knot splits them) and the
+        // knot-split panels further out: as many nodes as their distance from q_L needs.
         let panels: Vec<GlPanel> = ends
             .windows(2)
             .map(|p| {
@@ -664,12 +666,7 @@ impl Graded {
                     .partition_point(|&l| l <= u0 + p[0])
                     .saturating_sub(1);
                 let z = (grid.beta[base].abs() + 8.0) * (p[1] - p[0]);
-                let n = if rho < 4.0 {
-                    6
-                } else {
-                    graded_nodes(rho, z, rtol)
-                };
-                gl_panel(p[0], p[1], n)
+                gl_panel(p[0], p[1], graded_nodes(rho, z, rtol))
             })
             .collect();
         let first_end = grid.width.first().copied().unwrap_or(span).min(span);
@@ -732,7 +729,7 @@ impl Graded {
         near
     }
 
-    /// One 6-point panel (and its 5-point companion) added to the sums.
+    /// One n-point panel (and its (n − 1)-point companion) added to the sums.
     fn add_panel(
         &self,
         panel: &GlPanel,
@@ -744,8 +741,8 @@ impl Graded {
     ) {
         {
             let n = panel.n;
-            let mut e6 = [(0.0, 0.0, 0.0); 6];
-            let mut e5 = [(0.0, 0.0, 0.0); 5];
+            let mut e6 = [(0.0, 0.0, 0.0); GL_MAX];
+            let mut e5 = [(0.0, 0.0, 0.0); GL_MAX - 1];
             for (e, (&q, &u)) in e6.iter_mut().zip(panel.q.iter().zip(&panel.u)).take(n) {
                 *e = kf(q, u);
             }
@@ -758,9 +755,9 @@ impl Graded {
             }
             let g6: f64 = (0..n).map(|k| panel.w[k] * e6[k].0).sum();
             let g5: f64 = (0..n - 1).map(|k| panel.wc[k] * e5[k].0).sum();
-            let mut p6 = [0.0; 6];
-            let mut p5 = [0.0; 5];
-            let at = |row: &[f64; 6]| {
+            let mut p6 = [0.0; GL_MAX];
+            let mut p5 = [0.0; GL_MAX - 1];
+            let at = |row: &[f64; GL_MAX]| {
                 let partial: f64 = row.iter().zip(&e6).take(n).map(|(b, e)| b * e.0).sum();
                 contact_probability(p0, cg * (near.g_raw + partial))
             };
