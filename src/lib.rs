@@ -13,6 +13,7 @@
 
 pub mod batch;
 pub mod bem;
+pub mod cheb;
 pub mod check;
 pub mod contact;
 pub mod error;

@@ -3,8 +3,9 @@
 //! The contact integrals need S⁻², f² and g² at thousands of values of x = qd per thickness, and
 //! the stable forms of [`Bilayer::response`] cost ~70 ns each. All three depend on x alone, so for
 //! one material pair they are tabulated once in y = ln x: uniform panels of width [`WIDTH`] in y,
-//! each a polynomial of degree [`DEGREE`] through the Chebyshev points of the panel (stored as
-//! monomials in the panel's local variable t ∈ [−1, 1], evaluated by Estrin's scheme). The tabulated
+//! each a polynomial of degree [`DEGREE`](crate::cheb::DEGREE) through the Chebyshev points of
+//! the panel ([`crate::cheb`]: stored as monomials in the panel's local variable t ∈ [−1, 1],
+//! evaluated by Estrin's scheme). The tabulated
 //! functions are K = S⁻², F = f² e^{2x} and Γ = g² e^{2x}: all smooth in y with no large dynamic
 //! range across a panel (f and g decay like e^{−x}, which the table leaves to one `exp` per point).
 //!
@@ -22,12 +23,9 @@
 //! and g² underflow (q·d ≈ 350).
 
 use super::{Bilayer, QD_BULK};
+use crate::cheb::{Interpolation, N, poly};
 use crate::prec::TABLE_RTOL;
-use std::f64::consts::PI;
 
-/// Polynomial degree per panel.
-pub const DEGREE: usize = 13;
-const N: usize = DEGREE + 1;
 /// Panel width in y = ln(qd) before any halving.
 pub const WIDTH: f64 = 0.25;
 /// How often the panel width may be halved when a panel misses [`TABLE_RTOL`].
@@ -60,65 +58,6 @@ pub struct KernelTable {
     g: Vec<[f64; N]>,
     /// f e^x and g e^x above [`X_FAR`]: intercepts and slopes.
     far: [[f64; 2]; 2],
-}
-
-/// Monomial coefficients (in t) of the Chebyshev polynomials T_0..T_{N−1}.
-fn chebyshev_monomials() -> [[f64; N]; N] {
-    let mut t = [[0.0; N]; N];
-    t[0][0] = 1.0;
-    t[1][1] = 1.0;
-    for n in 2..N {
-        for k in 0..N {
-            let up = if k > 0 { 2.0 * t[n - 1][k - 1] } else { 0.0 };
-            t[n][k] = up - t[n - 2][k];
-        }
-    }
-    t
-}
-
-/// Interpolation at the Chebyshev points t_j = cos(π(j + ½)/N): the discrete cosine transform
-/// to Chebyshev coefficients (which decay fast for these smooth functions), then each T_k expanded
-/// in monomials. The coefficients are formed before the expansion so that rounding in the
-/// transform is not multiplied by the large monomial coefficients of T_k.
-struct Interpolation {
-    cosines: [[f64; N]; N],
-    monomials: [[f64; N]; N],
-}
-
-impl Interpolation {
-    fn new() -> Self {
-        Self {
-            cosines: std::array::from_fn(|k| {
-                let scale = if k == 0 { 1.0 } else { 2.0 } / N as f64;
-                std::array::from_fn(|j| scale * (PI * k as f64 * (j as f64 + 0.5) / N as f64).cos())
-            }),
-            monomials: chebyshev_monomials(),
-        }
-    }
-
-    fn coefficients(&self, values: &[f64; N]) -> [f64; N] {
-        let mut mono = [0.0; N];
-        for (row, t_k) in self.cosines.iter().zip(&self.monomials) {
-            let a: f64 = row.iter().zip(values).map(|(c, v)| c * v).sum();
-            for (m, c) in mono.iter_mut().zip(t_k) {
-                *m += a * c;
-            }
-        }
-        mono
-    }
-}
-
-/// The panel polynomial at t by Estrin's scheme (pairs, then powers t², t⁴, t⁸): a dependency
-/// chain of depth 5 instead of Horner's 13, which is what the evaluation time is made of.
-#[inline(always)]
-fn poly(c: &[f64; N], t: f64) -> f64 {
-    let t2 = t * t;
-    let t4 = t2 * t2;
-    let t8 = t4 * t4;
-    let p = |i: usize| c[i] + c[i + 1] * t;
-    let low = (p(0) + t2 * p(2)) + t4 * (p(4) + t2 * p(6));
-    let high = (p(8) + t2 * p(10)) + t4 * p(12);
-    low + t8 * high
 }
 
 /// f e^x and g e^x as lines a + b x above [`X_FAR`], through the exact values at 40 and 80.
@@ -164,7 +103,7 @@ impl KernelTable {
         interp: &Interpolation,
     ) -> Option<Self> {
         let panels = (((y1 - y0) / width).ceil() as usize).max(1);
-        let nodes: [f64; N] = std::array::from_fn(|j| (PI * (j as f64 + 0.5) / N as f64).cos());
+        let nodes = crate::cheb::nodes();
         // Checks: the panel's ends and the midpoints between its outer nodes.
         let checks = [
             -1.0,
