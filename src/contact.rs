@@ -37,6 +37,7 @@ use crate::layer::{Bilayer, KernelTable, Squared, Stack};
 use crate::prec::{EPS, Estimate, KERNEL_RTOL, Settings, Termination};
 use crate::psd::Spectrum;
 use crate::quad::{self, ExpGauss2};
+use crate::special::erf_and_gauss;
 use libm::{erf, erfc};
 use serde::Serialize;
 use statrs::function::erf::erfc_inv;
@@ -1096,57 +1097,6 @@ fn refill<T: Copy>(v: &mut Vec<T>, n: usize, x: T) -> &mut Vec<T> {
     v
 }
 
-/// Below this x, [`erf_and_gauss`] sums the Taylor series (x² ≤ 1/16: ten terms in x² reach
-/// 2.5e−19 relative, the next one).
-const ERF_SERIES_X: f64 = 0.25;
-
-/// erf(x) and e^{−x²} for x ≥ 0. Where the contact area is small, P = erf(p0/(2√G)) has x ≪ 1
-/// at almost every node; there both are ten-term series in t = x² (erf(x) = (2/√π) x Σ (−t)ⁿ/(n!(2n+1)),
-/// e^{−t} = Σ (−t)ⁿ/n!), evaluated by Estrin's scheme: about a third of libm's erf plus exp.
-/// Above [`ERF_SERIES_X`], libm's.
-#[inline]
-fn erf_and_gauss(x: f64) -> (f64, f64) {
-    if x >= ERF_SERIES_X {
-        return (erf(x), (-x * x).exp());
-    }
-    const E: [f64; 10] = [
-        1.0,
-        -1.0 / 3.0,
-        1.0 / 10.0,
-        -1.0 / 42.0,
-        1.0 / 216.0,
-        -1.0 / 1320.0,
-        1.0 / 9360.0,
-        -1.0 / 75600.0,
-        1.0 / 685440.0,
-        -1.0 / 6894720.0,
-    ];
-    const G: [f64; 10] = [
-        1.0,
-        -1.0,
-        1.0 / 2.0,
-        -1.0 / 6.0,
-        1.0 / 24.0,
-        -1.0 / 120.0,
-        1.0 / 720.0,
-        -1.0 / 5040.0,
-        1.0 / 40320.0,
-        -1.0 / 362880.0,
-    ];
-    let t = x * x;
-    let t2 = t * t;
-    let t4 = t2 * t2;
-    let t8 = t4 * t4;
-    let estrin = |c: &[f64; 10]| {
-        let p = |i: usize| c[i] + c[i + 1] * t;
-        (p(0) + t2 * p(2)) + t4 * (p(4) + t2 * p(6)) + t8 * p(8)
-    };
-    (
-        std::f64::consts::FRAC_2_SQRT_PI * x * estrin(&E),
-        estrin(&G),
-    )
-}
-
 /// P(G) = erf(p0 / (2√G)), with P(0) = 1.
 fn contact_probability(p0: f64, g: f64) -> f64 {
     if g <= 0.0 {
@@ -1349,13 +1299,14 @@ fn evaluate_on(
         }
         // Then the two-node panels. First G and P at every node (forward pass: running sum plus
         // the panel's partial integral), with the error of P from the error of G.
-        refill(p_node, n, 0.0);
-        refill(g_node, n, 0.0);
+        // (Nodes and panels up to the cut.)
+        refill(p_node, 2 * to, 0.0);
+        refill(g_node, 2 * to, 0.0);
         // |dP/dG| times the cumulative G error, and dP/dG times the signed partial-integral error.
-        refill(dp_cum, n, 0.0);
-        refill(dp_part, n, 0.0);
+        refill(dp_cum, 2 * to, 0.0);
+        refill(dp_part, 2 * to, 0.0);
         // P and its first four u-derivatives at each panel's first node, for the error terms.
-        refill(p_der, grid.panels(), [0.0; 5]);
+        refill(p_der, to, [0.0; 5]);
         let mut g_left = near.g_raw;
         let mut g_left_err = near.g_raw_err;
         for (p, g_err) in g_errs.iter().enumerate().take(to).skip(from) {
@@ -1573,27 +1524,6 @@ impl NormalStress {
 mod tests {
     use super::*;
     use crate::psd::Tabulated;
-
-    /// The series branch of erf(x), e^{−x²} against libm's erf and exp (each within 1 ulp) on
-    /// 20001 points of [0, 1/4] and just below the switch: within 3 ulp relative.
-    #[test]
-    fn erf_series_matches_libm() {
-        let xs = (0..=20_000)
-            .map(|i| ERF_SERIES_X * f64::from(i) / 20_000.0)
-            .chain((1..=50).map(|k| ERF_SERIES_X * (1.0 - f64::from(k) * EPS)));
-        for x in xs {
-            let (e, g) = erf_and_gauss(x);
-            let (e_ref, g_ref) = (erf(x), (-x * x).exp());
-            assert!(
-                (e - e_ref).abs() <= 3.0 * EPS * e_ref,
-                "erf({x}): {e} vs {e_ref}"
-            );
-            assert!(
-                (g - g_ref).abs() <= 3.0 * EPS * g_ref,
-                "exp(-{x}²): {g} vs {g_ref}"
-            );
-        }
-    }
 
     /// W from the grid's panel power laws equals q⁴C(q) from the spectrum, inside knot intervals
     /// split by the panel width or not.

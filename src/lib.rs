@@ -27,6 +27,7 @@ pub mod psd;
 pub mod quad;
 pub mod report;
 pub mod scene;
+pub mod special;
 pub mod tomlin;
 pub mod topography;
 pub mod units;
