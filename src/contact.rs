@@ -387,54 +387,54 @@ impl Grid {
         self.sum_with_errors(&self.rho, &errs)
     }
 
-    /// Error estimate of Σ w ρ K k2 P from panel `from` on, where P = P(G(u)) has kinks in its
-    /// second derivative at the spectrum's knots (G'' jumps there) and so cannot be differenced
-    /// across panels. The smooth factor A = ρ K k2 is differenced (divided differences over five
-    /// nodes); P's u-derivatives at each panel's first node (`p_der`, from
-    /// [`probability_derivatives`]) come from the chain rule with the analytic G-derivatives of
-    /// erf(a/√G); Leibniz's rule gives (AP)⁗ and the Gauss error term err4·|(AP)⁗|, with the
-    /// safety factor.
-    fn product_errors(
+    /// Σ w ρ K F² P over the panels [from, to) with its error estimate, from `a` = ρ K F² at the
+    /// nodes (up to two panels and a node past `to`) and P at them.
+    ///
+    /// The Gauss error term: P = P(G(u)) has kinks in its second derivative at the spectrum's
+    /// knots (G'' jumps there) and so cannot be differenced across panels. The smooth factor `a`
+    /// is differenced (divided differences over five nodes); P's u-derivatives at each panel's
+    /// first node (`p_der`, from [`probability_derivatives`]) come from the chain rule with the
+    /// analytic G-derivatives of erf(a/√G); Leibniz's rule gives (aP)⁗ and the error term
+    /// err4·|(aP)⁗|, with the safety factor. Then P's own error from G's: `dp_cum` (the
+    /// cumulative G error times |dP/dG|) and `dp_part` (the partial integral's curvature term
+    /// times dP/dG, signed), weighted by w·a.
+    #[allow(clippy::too_many_arguments)]
+    fn interface_sum(
         &self,
-        kern: &[f64],
-        k2: &[f64],
+        a: &[f64],
+        p_node: &[f64],
+        dp_cum: &[f64],
+        dp_part: &[f64],
         p_der: &[[f64; 5]],
         from: usize,
         to: usize,
-    ) -> f64 {
+    ) -> (f64, f64) {
         let n = self.q.len();
         let lo = 2 * from;
-        if n - lo < 5 {
-            return 0.0;
+        let differenced = n >= lo + 5;
+        let (mut v, mut gauss, mut dp) = (0.0, 0.0, 0.0);
+        for (p, pd) in p_der.iter().enumerate().take(to).skip(from) {
+            let (j0, j1) = (2 * p, 2 * p + 1);
+            let (wa0, wa1) = (self.w[j0] * a[j0], self.w[j1] * a[j1]);
+            v += wa0 * p_node[j0] + wa1 * p_node[j1];
+            dp += wa0 * dp_cum[j0]
+                + wa1 * dp_cum[j1]
+                + ERR_SAFETY * (wa0 * dp_part[j0] + wa1 * dp_part[j1]).abs();
+            if differenced {
+                let start = j0.saturating_sub(2).max(lo).min(n - 5);
+                let win: &[f64; 5] = a[start..start + 5].try_into().expect("five nodes");
+                // f[u_s..u_{s+k}] ≈ a^(k)/k! (the weights are zero past node s + k).
+                let dot = |row: &[f64; 5]| row.iter().zip(win).map(|(r, v)| r * v).sum::<f64>();
+                let dd = &self.dd[start];
+                let d4 = 24.0 * dot(&dd[3]) * pd[0]
+                    + 4.0 * 6.0 * dot(&dd[2]) * pd[1]
+                    + 6.0 * 2.0 * dot(&dd[1]) * pd[2]
+                    + 4.0 * dot(&dd[0]) * pd[3]
+                    + a[j0] * pd[4];
+                gauss += ERR_SAFETY * self.err4[p] * d4.abs();
+            }
         }
-        let mut total = 0.0;
-        for (panel, pd) in p_der.iter().enumerate().take(to).skip(from) {
-            let start = (2 * panel).saturating_sub(2).max(lo).min(n - 5);
-            let a: [f64; 5] = std::array::from_fn(|m| {
-                let j = start + m;
-                self.rho[j] * kern[j] * k2[j]
-            });
-            // Divided differences of A over the five nodes: f[u_s..u_{s+k}] ≈ A^(k)/k!.
-            let dd = |k: usize| -> f64 {
-                self.dd[start][k - 1][..=k]
-                    .iter()
-                    .zip(&a)
-                    .map(|(w, v)| w * v)
-                    .sum()
-            };
-            let j = 2 * panel;
-            let a_der = [
-                self.rho[j] * kern[j] * k2[j],
-                dd(1),
-                2.0 * dd(2),
-                6.0 * dd(3),
-                24.0 * dd(4),
-            ];
-            let binom = [1.0, 4.0, 6.0, 4.0, 1.0];
-            let d4: f64 = (0..5).map(|k| binom[k] * a_der[4 - k] * pd[k]).sum();
-            total += ERR_SAFETY * self.err4[panel] * d4.abs();
-        }
-        total
+        (v, gauss + dp)
     }
 }
 
@@ -1084,6 +1084,7 @@ struct Scratch {
     dp_cum: Vec<f64>,
     dp_part: Vec<f64>,
     p_der: Vec<[f64; 5]>,
+    smooth: Vec<f64>,
 }
 
 thread_local! {
@@ -1196,6 +1197,7 @@ fn evaluate_on(
         dp_cum,
         dp_part,
         p_der,
+        smooth,
     } = scratch;
     kern.clear();
     for (&q, &u) in grid.q.iter().zip(&grid.u) {
@@ -1340,22 +1342,16 @@ fn evaluate_on(
         // Beyond the last panel P ≤ 1 and F² ≤ its value at the first node left out (f², g²
         // decrease for q·d ≥ X_CUT), so the tail is at most F²(that node)·Σ w ρ K.
         let tail_weight: f64 = (2 * to..n).map(|j| grid.w[j] * f[j]).sum();
-        let base = |k2: &[f64], acc: (f64, f64)| {
-            let v: f64 = (2 * from..2 * to)
-                .map(|j| grid.w[j] * grid.rho[j] * kern[j] * p_node[j] * k2[j])
-                .sum();
-            let e = grid.product_errors(kern, k2, p_der, from, to);
+        // ρ K F² at the nodes the sums and their divided differences use.
+        let used = (2 * to + 5).min(n);
+        let base = |k2: &[f64], a: &mut Vec<f64>, acc: (f64, f64)| {
+            refill(a, used, 0.0);
+            for j in 2 * from..used {
+                a[j] = grid.rho[j] * kern[j] * k2[j];
+            }
+            let (v, e) = grid.interface_sum(a, p_node, dp_cum, dp_part, p_der, from, to);
             let tail = k2.get(2 * to).map_or(0.0, |&k2c| k2c * tail_weight);
-            let wt = |j: usize| grid.w[j] * grid.rho[j] * kern[j] * k2[j];
-            let dp: f64 = (from..to)
-                .map(|p| {
-                    let (j0, j1) = (2 * p, 2 * p + 1);
-                    wt(j0) * dp_cum[j0]
-                        + wt(j1) * dp_cum[j1]
-                        + ERR_SAFETY * (wt(j0) * dp_part[j0] + wt(j1) * dp_part[j1]).abs()
-                })
-                .sum();
-            (acc.0 + v, acc.1 + e + dp + tail)
+            (acc.0 + v, acc.1 + e + tail)
         };
         let (mut sig, mut tau) = (near.sigma, near.tau);
         for (want, k2, acc) in [
@@ -1363,7 +1359,7 @@ fn evaluate_on(
             (req.tau_interface, &g2, &mut tau),
         ] {
             if want {
-                *acc = base(k2, *acc);
+                *acc = base(k2, smooth, *acc);
             }
         }
         if req.sigma_interface {
