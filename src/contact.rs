@@ -742,41 +742,41 @@ impl Graded {
     ) {
         {
             let n = panel.n;
-            let mut e6 = [(0.0, 0.0, 0.0); GL_MAX];
-            let mut e5 = [(0.0, 0.0, 0.0); GL_MAX - 1];
-            for (e, (&q, &u)) in e6.iter_mut().zip(panel.q.iter().zip(&panel.u)).take(n) {
+            let mut e_n = [(0.0, 0.0, 0.0); GL_MAX];
+            let mut e_c = [(0.0, 0.0, 0.0); GL_MAX - 1];
+            for (e, (&q, &u)) in e_n.iter_mut().zip(panel.q.iter().zip(&panel.u)).take(n) {
                 *e = kf(q, u);
             }
-            for (e, (&q, &u)) in e5
+            for (e, (&q, &u)) in e_c
                 .iter_mut()
                 .zip(panel.qc.iter().zip(&panel.uc))
                 .take(n - 1)
             {
                 *e = kf(q, u);
             }
-            let g6: f64 = (0..n).map(|k| panel.w[k] * e6[k].0).sum();
-            let g5: f64 = (0..n - 1).map(|k| panel.wc[k] * e5[k].0).sum();
-            let mut p6 = [0.0; GL_MAX];
-            let mut p5 = [0.0; GL_MAX - 1];
+            let g_n: f64 = (0..n).map(|k| panel.w[k] * e_n[k].0).sum();
+            let g_c: f64 = (0..n - 1).map(|k| panel.wc[k] * e_c[k].0).sum();
+            let mut p_n = [0.0; GL_MAX];
+            let mut p_c = [0.0; GL_MAX - 1];
             let at = |row: &[f64; GL_MAX]| {
-                let partial: f64 = row.iter().zip(&e6).take(n).map(|(b, e)| b * e.0).sum();
+                let partial: f64 = row.iter().zip(&e_n).take(n).map(|(b, e)| b * e.0).sum();
                 contact_probability(p0, cg * (near.g_raw + partial))
             };
-            for (p, row) in p6.iter_mut().zip(&panel.b).take(n) {
+            for (p, row) in p_n.iter_mut().zip(&panel.b).take(n) {
                 *p = at(row);
             }
-            for (p, row) in p5.iter_mut().zip(&panel.bc).take(n - 1) {
+            for (p, row) in p_c.iter_mut().zip(&panel.bc).take(n - 1) {
                 *p = at(row);
             }
             let add = |acc: &mut (f64, f64), pick: fn(&(f64, f64, f64)) -> f64| {
-                let i6: f64 = (0..n)
-                    .map(|k| panel.w[k] * e6[k].0 * p6[k] * pick(&e6[k]))
+                let i_n: f64 = (0..n)
+                    .map(|k| panel.w[k] * e_n[k].0 * p_n[k] * pick(&e_n[k]))
                     .sum();
-                let i5: f64 = (0..n - 1)
-                    .map(|k| panel.wc[k] * e5[k].0 * p5[k] * pick(&e5[k]))
+                let i_c: f64 = (0..n - 1)
+                    .map(|k| panel.wc[k] * e_c[k].0 * p_c[k] * pick(&e_c[k]))
                     .sum();
-                acc.0 += i6;
-                acc.1 += (i6 - i5).abs() + 8.0 * EPS * i6.abs();
+                acc.0 += i_n;
+                acc.1 += (i_n - i_c).abs() + 8.0 * EPS * i_n.abs();
             };
             if req.sigma_interface {
                 add(&mut near.sigma, |e| e.1);
@@ -784,8 +784,8 @@ impl Graded {
             if req.tau_interface {
                 add(&mut near.tau, |e| e.2);
             }
-            near.g_raw += g6;
-            near.g_raw_err += (g6 - g5).abs();
+            near.g_raw += g_n;
+            near.g_raw_err += (g_n - g_c).abs();
             near.evaluations += 2 * n - 1;
         }
     }
