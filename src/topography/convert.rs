@@ -90,7 +90,7 @@ fn estimate(value: f64, diff: f64, abs: f64, panels: usize) -> Estimate {
 }
 
 /// Forward transform: C1D(q) = 4∫_q^∞ k C(k)/√(k² − q²) dk for a 2D PSD `c` that is zero
-/// outside [knots[0], knots[last]] and smooth between consecutive knots (sorted, > 0).
+/// outside `[knots[0], knots[last]]` and smooth between consecutive knots (sorted, > 0).
 pub fn c1d_at(c: impl Fn(f64) -> f64, knots: &[f64], q: f64) -> Estimate {
     let (Some(&lo), Some(&hi)) = (knots.first(), knots.last()) else {
         return Estimate::exact(0.0);
