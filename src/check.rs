@@ -659,8 +659,15 @@ impl Checker {
         w
     }
 
-    /// Evaluations at many thicknesses, in parallel.
+    /// Evaluations at many thicknesses, in parallel; each equal to [`evaluate`](Self::evaluate)
+    /// at its thickness afterwards, to the last bit (one kernel table serves them all).
     pub fn sweep(&self, thicknesses: &[f64]) -> Result<Vec<Evaluation>, Error> {
+        let (lo, hi) = thicknesses
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), &d| {
+                (lo.min(d), hi.max(d))
+            });
+        self.engine.prepare(&self.design.layers, lo, hi);
         thicknesses.par_iter().map(|&d| self.evaluate(d)).collect()
     }
 }

@@ -501,6 +501,24 @@ struct GlPanel {
     uc: [f64; GL_MAX - 1],
     wc: [f64; GL_MAX - 1],
     bc: [[f64; GL_MAX]; GL_MAX - 1],
+    /// Positions of the n nodes and of the n − 1 companion nodes among the panel's 2n − 1
+    /// nodes in ascending order (how [`Graded::nodes`] holds them).
+    at: [usize; GL_MAX],
+    atc: [usize; GL_MAX - 1],
+}
+
+impl GlPanel {
+    /// The panel's 2n − 1 nodes (q, u) in ascending order (the rest of the array unused).
+    fn sorted(&self) -> [(f64, f64); 2 * GL_MAX - 1] {
+        let mut out = [(0.0, 0.0); 2 * GL_MAX - 1];
+        for k in 0..self.n {
+            out[self.at[k]] = (self.q[k], self.u[k]);
+        }
+        for k in 0..self.n - 1 {
+            out[self.atc[k]] = (self.qc[k], self.uc[k]);
+        }
+        out
+    }
 }
 
 /// The interface quadrature near q_L, where P(G(u)) ∝ (u − u_L)^{-1/2} once G ≫ p0²: panels
@@ -515,6 +533,9 @@ struct GlPanel {
 /// whole region P varies slowly and the base grid starts at q_L (see `evaluate_on`).
 struct Graded {
     panels: Vec<GlPanel>,
+    /// Every panel's nodes and companion nodes (q, u), ascending, and where each panel's start.
+    nodes: (Vec<f64>, Vec<f64>),
+    offsets: Vec<usize>,
     /// First two-node panel of the base grid after the graded region.
     base_from: usize,
     q_l: f64,
@@ -643,8 +664,22 @@ impl Graded {
             let wq: [f64; GL_MAX] = std::array::from_fn(|k| if k < n { w_of(q[k]) } else { 0.0 });
             let wqc: [f64; GL_MAX - 1] =
                 std::array::from_fn(|k| if k < n - 1 { w_of(qc[k]) } else { 0.0 });
+            // Merge the two ascending node sets.
+            let (mut at, mut atc) = ([0; GL_MAX], [0; GL_MAX - 1]);
+            let (mut i, mut k) = (0, 0);
+            while i < n || k < n - 1 {
+                if k == n - 1 || (i < n && q[i] <= qc[k]) {
+                    at[i] = i + k;
+                    i += 1;
+                } else {
+                    atc[k] = i + k;
+                    k += 1;
+                }
+            }
             GlPanel {
                 n,
+                at,
+                atc,
                 q,
                 u: q.map(f64::ln),
                 w: std::array::from_fn(|k| gw.get(k).map_or(0.0, |g| g * half * wq[k])),
@@ -678,8 +713,20 @@ impl Graded {
             .collect();
         let w_at_l = w_of(q_l);
         let slope = (w_of(q_l * first_end.exp()) / w_at_l).ln() / first_end;
+        let mut offsets = Vec::with_capacity(panels.len() + 1);
+        let (mut nq, mut nu) = (vec![], vec![]);
+        for panel in &panels {
+            offsets.push(nq.len());
+            for &(q, u) in &panel.sorted()[..2 * panel.n - 1] {
+                nq.push(q);
+                nu.push(u);
+            }
+        }
+        offsets.push(nq.len());
         Graded {
             panels,
+            nodes: (nq, nu),
+            offsets,
             base_from,
             q_l,
             w_l: w_at_l * ends[0],
@@ -689,26 +736,40 @@ impl Graded {
         }
     }
 
-    fn integrate(&self, kernels: &Kernels, p0: f64, cg: f64, req: Request) -> Near {
-        let kf = |q: f64, u: f64| {
-            let r = kernels.squared(q, u);
+    /// The graded region's sums, with the kernels at all its nodes evaluated in two batches
+    /// (S⁻², then f² and g²) into `buf`.
+    fn integrate(
+        &self,
+        kernels: &Kernels,
+        p0: f64,
+        cg: f64,
+        req: Request,
+        buf: &mut [Vec<f64>; 3],
+    ) -> Near {
+        let (k0, f0, g0) = {
+            let r = kernels.squared(self.q_l, self.q_l.ln());
             (r.k, r.f2, r.g2)
         };
-        let (k0, f0, g0) = kf(self.q_l, self.q_l.ln());
         // The largest merged panel over which G ≤ a²/36 by the bound G'(u_L)·r·e^{γr}.
         let (a2, gp0) = (0.25 * p0 * p0, cg * self.w_at_l * k0);
         let merge = self
             .merged
             .iter()
             .rposition(|&(r, _)| gp0 * r * (self.growth * r).exp() <= a2 / 36.0);
-        let (mut near, rest) = match merge {
+        let (mut near, first) = match merge {
             Some(i) => {
                 let mut near = Near {
                     evaluations: 1,
                     ..NEAR_NONE
                 };
-                self.add_panel(&self.merged[i].1, &mut near, &kf, p0, cg, req);
-                (near, &self.panels[i + 1..])
+                let panel = &self.merged[i].1;
+                let mut vals = [(0.0, 0.0, 0.0); 2 * GL_MAX - 1];
+                for (v, &(q, u)) in vals.iter_mut().zip(&panel.sorted()[..2 * panel.n - 1]) {
+                    let r = kernels.squared(q, u);
+                    *v = (r.k, r.f2, r.g2);
+                }
+                self.add_panel(panel, &mut near, &vals, p0, cg, req);
+                (near, i + 1)
             }
             None => {
                 // Innermost piece: G grows linearly from 0, F² is constant to 1e-10.
@@ -721,73 +782,87 @@ impl Graded {
                     tau: (g0 * j0, 1e-9 * g0 * j0),
                     evaluations: 1,
                 };
-                (near, &self.panels[..])
+                (near, 0)
             }
         };
-        for panel in rest {
-            self.add_panel(panel, &mut near, &kf, p0, cg, req);
+        let lo = self.offsets[first];
+        let (q, u) = (&self.nodes.0[lo..], &self.nodes.1[lo..]);
+        let [k, f2, g2] = buf;
+        kernels.k_many(q, u, refill(k, q.len(), 0.0));
+        kernels.interface_many(q, u, refill(f2, q.len(), 0.0), refill(g2, q.len(), 0.0));
+        let mut vals = [(0.0, 0.0, 0.0); 2 * GL_MAX - 1];
+        for (p, panel) in self.panels.iter().enumerate().skip(first) {
+            let r = self.offsets[p] - lo..self.offsets[p + 1] - lo;
+            for (v, ((&k, &f), &g)) in vals
+                .iter_mut()
+                .zip(k[r.clone()].iter().zip(&f2[r.clone()]).zip(&g2[r]))
+            {
+                *v = (k, f, g);
+            }
+            self.add_panel(panel, &mut near, &vals, p0, cg, req);
         }
         near
     }
 
-    /// One n-point panel (and its (n − 1)-point companion) added to the sums.
+    /// One n-point panel (and its (n − 1)-point companion) added to the sums, from S⁻², f², g²
+    /// at its 2n − 1 nodes in ascending order (`vals`).
     fn add_panel(
         &self,
         panel: &GlPanel,
         near: &mut Near,
-        kf: &impl Fn(f64, f64) -> (f64, f64, f64),
+        vals: &[(f64, f64, f64)],
         p0: f64,
         cg: f64,
         req: Request,
     ) {
-        {
-            let n = panel.n;
-            let mut e_n = [(0.0, 0.0, 0.0); GL_MAX];
-            let mut e_c = [(0.0, 0.0, 0.0); GL_MAX - 1];
-            for (e, (&q, &u)) in e_n.iter_mut().zip(panel.q.iter().zip(&panel.u)).take(n) {
-                *e = kf(q, u);
+        let n = panel.n;
+        let e_n: [(f64, f64, f64); GL_MAX] = std::array::from_fn(|k| {
+            if k < n {
+                vals[panel.at[k]]
+            } else {
+                (0.0, 0.0, 0.0)
             }
-            for (e, (&q, &u)) in e_c
-                .iter_mut()
-                .zip(panel.qc.iter().zip(&panel.uc))
-                .take(n - 1)
-            {
-                *e = kf(q, u);
+        });
+        let e_c: [(f64, f64, f64); GL_MAX - 1] = std::array::from_fn(|k| {
+            if k < n - 1 {
+                vals[panel.atc[k]]
+            } else {
+                (0.0, 0.0, 0.0)
             }
-            let g_n: f64 = (0..n).map(|k| panel.w[k] * e_n[k].0).sum();
-            let g_c: f64 = (0..n - 1).map(|k| panel.wc[k] * e_c[k].0).sum();
-            let mut p_n = [0.0; GL_MAX];
-            let mut p_c = [0.0; GL_MAX - 1];
-            let at = |row: &[f64; GL_MAX]| {
-                let partial: f64 = row.iter().zip(&e_n).take(n).map(|(b, e)| b * e.0).sum();
-                contact_probability(p0, cg * (near.g_raw + partial))
-            };
-            for (p, row) in p_n.iter_mut().zip(&panel.b).take(n) {
-                *p = at(row);
-            }
-            for (p, row) in p_c.iter_mut().zip(&panel.bc).take(n - 1) {
-                *p = at(row);
-            }
-            let add = |acc: &mut (f64, f64), pick: fn(&(f64, f64, f64)) -> f64| {
-                let i_n: f64 = (0..n)
-                    .map(|k| panel.w[k] * e_n[k].0 * p_n[k] * pick(&e_n[k]))
-                    .sum();
-                let i_c: f64 = (0..n - 1)
-                    .map(|k| panel.wc[k] * e_c[k].0 * p_c[k] * pick(&e_c[k]))
-                    .sum();
-                acc.0 += i_n;
-                acc.1 += (i_n - i_c).abs() + 8.0 * EPS * i_n.abs();
-            };
-            if req.sigma_interface {
-                add(&mut near.sigma, |e| e.1);
-            }
-            if req.tau_interface {
-                add(&mut near.tau, |e| e.2);
-            }
-            near.g_raw += g_n;
-            near.g_raw_err += (g_n - g_c).abs();
-            near.evaluations += 2 * n - 1;
+        });
+        let g_n: f64 = (0..n).map(|k| panel.w[k] * e_n[k].0).sum();
+        let g_c: f64 = (0..n - 1).map(|k| panel.wc[k] * e_c[k].0).sum();
+        let mut p_n = [0.0; GL_MAX];
+        let mut p_c = [0.0; GL_MAX - 1];
+        let at = |row: &[f64; GL_MAX]| {
+            let partial: f64 = row.iter().zip(&e_n).take(n).map(|(b, e)| b * e.0).sum();
+            contact_probability(p0, cg * (near.g_raw + partial))
+        };
+        for (p, row) in p_n.iter_mut().zip(&panel.b).take(n) {
+            *p = at(row);
         }
+        for (p, row) in p_c.iter_mut().zip(&panel.bc).take(n - 1) {
+            *p = at(row);
+        }
+        let add = |acc: &mut (f64, f64), pick: fn(&(f64, f64, f64)) -> f64| {
+            let i_n: f64 = (0..n)
+                .map(|k| panel.w[k] * e_n[k].0 * p_n[k] * pick(&e_n[k]))
+                .sum();
+            let i_c: f64 = (0..n - 1)
+                .map(|k| panel.wc[k] * e_c[k].0 * p_c[k] * pick(&e_c[k]))
+                .sum();
+            acc.0 += i_n;
+            acc.1 += (i_n - i_c).abs() + 8.0 * EPS * i_n.abs();
+        };
+        if req.sigma_interface {
+            add(&mut near.sigma, |e| e.1);
+        }
+        if req.tau_interface {
+            add(&mut near.tau, |e| e.2);
+        }
+        near.g_raw += g_n;
+        near.g_raw_err += (g_n - g_c).abs();
+        near.evaluations += 2 * n - 1;
     }
 }
 
@@ -813,6 +888,10 @@ struct Shared {
 /// Where f² and g² are known to decrease, the lowest q·d at which the interface integrals are
 /// cut (module doc).
 const X_CUT: f64 = 20.0;
+
+/// How many nodes' f², g² are evaluated at a time beyond q·d = X_CUT, while the cut is looked
+/// for (at most this many are evaluated and not used).
+const CUT_CHUNK: usize = 16;
 
 /// How far (in ln(qd)) a rebuilt kernel table reaches beyond the range asked for, so that a
 /// thickness scan does not rebuild it at every step.
@@ -849,6 +928,30 @@ impl Kernels<'_> {
             Kernels::Exact { layers, d } => {
                 let r = layers.response(q * d);
                 (r.f * r.f, r.g * r.g)
+            }
+        }
+    }
+
+    /// S⁻² at the ascending nodes (q, u), into `out`.
+    fn k_many(&self, q: &[f64], u: &[f64], out: &mut [f64]) {
+        match *self {
+            Kernels::Table { table, d, ln_d } => table.k_many(q, u, d, ln_d, out),
+            Kernels::Exact { .. } => {
+                for ((o, &q), &u) in out.iter_mut().zip(q).zip(u) {
+                    *o = self.k(q, u);
+                }
+            }
+        }
+    }
+
+    /// f², g² at the ascending nodes (q, u), into `f2` and `g2`.
+    fn interface_many(&self, q: &[f64], u: &[f64], f2: &mut [f64], g2: &mut [f64]) {
+        match *self {
+            Kernels::Table { table, d, ln_d } => table.interface_many(q, u, d, ln_d, f2, g2),
+            Kernels::Exact { .. } => {
+                for (((fo, go), &q), &u) in f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u) {
+                    (*fo, *go) = self.interface(q, u);
+                }
             }
         }
     }
@@ -899,24 +1002,37 @@ impl Engine {
         }
     }
 
+    /// Builds the kernel table for `layers` at every thickness in [d_min, d_max] now, so that
+    /// evaluations there (in parallel, in any order) all use the same one: a table rebuilt
+    /// wider has other panels, and kernel values that differ within its 2e-14 tolerance.
+    pub fn prepare(&self, layers: &Bilayer, d_min: f64, d_max: f64) {
+        if d_min > 0.0 && d_max.is_finite() {
+            self.table_covering(layers, d_min, d_max);
+        }
+    }
+
     /// A kernel table for `stack` covering every node's q·d, from the cache or newly built.
     fn table_for(&self, stack: &Stack) -> Option<Arc<KernelTable>> {
+        self.table_covering(&stack.layers, stack.thickness, stack.thickness)
+    }
+
+    /// A kernel table for `layers` covering every node's q·d for d in [d_min, d_max].
+    fn table_covering(&self, layers: &Bilayer, d_min: f64, d_max: f64) -> Option<Arc<KernelTable>> {
         let (q_lo, q_hi) = (self.spectrum.q_low(), self.spectrum.support().1);
-        let d = stack.thickness;
-        let (x_min, x_max) = (q_lo * d, q_hi * d);
+        let (x_min, x_max) = (q_lo * d_min, q_hi * d_max);
         let mut cache = self.shared.table.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(t) = cache
             .as_ref()
-            .filter(|t| t.layers() == &stack.layers && t.covers(x_min, x_max))
+            .filter(|t| t.layers() == layers && t.covers(x_min, x_max))
         {
             return Some(Arc::clone(t));
         }
         let (mut lo, mut hi) = (x_min.ln() - TABLE_MARGIN, x_max.ln() + TABLE_MARGIN);
-        if let Some(t) = cache.as_ref().filter(|t| t.layers() == &stack.layers) {
+        if let Some(t) = cache.as_ref().filter(|t| t.layers() == layers) {
             let (a, b) = t.range();
             (lo, hi) = (lo.min(a.ln()), hi.max(b.ln()));
         }
-        let table = Arc::new(KernelTable::new(stack.layers, lo.exp(), hi.exp())?);
+        let table = Arc::new(KernelTable::new(*layers, lo.exp(), hi.exp())?);
         *cache = Some(Arc::clone(&table));
         Some(table)
     }
@@ -1085,6 +1201,8 @@ struct Scratch {
     dp_part: Vec<f64>,
     p_der: Vec<[f64; 5]>,
     smooth: Vec<f64>,
+    /// S⁻², f², g² at the graded region's nodes.
+    near_buf: [Vec<f64>; 3],
 }
 
 thread_local! {
@@ -1198,17 +1316,14 @@ fn evaluate_on(
         dp_part,
         p_der,
         smooth,
+        near_buf,
     } = scratch;
-    kern.clear();
-    for (&q, &u) in grid.q.iter().zip(&grid.u) {
-        let k = kernels.k(q, u);
-        if !k.is_finite() {
-            return Err(Error::Numerical {
-                what: "layer response",
-                detail: format!("S(qd) = 0 at qd = {:e}", q * d),
-            });
-        }
-        kern.push(k);
+    kernels.k_many(&grid.q, &grid.u, refill(kern, n, 0.0));
+    if let Some(j) = kern.iter().position(|k| !k.is_finite()) {
+        return Err(Error::Numerical {
+            what: "layer response",
+            detail: format!("S(qd) = 0 at qd = {:e}", grid.q[j] * d),
+        });
     }
     f.clear();
     f.extend(kern.iter().zip(&grid.rho).map(|(k, r)| k * r));
@@ -1247,7 +1362,10 @@ fn evaluate_on(
         let (near, from) = if 0.25 * p0 * p0 >= GRADED_SKIP * cg * span_raw {
             (NEAR_NONE, 0)
         } else {
-            (graded.integrate(kernels, p0, cg, req), graded.base_from)
+            (
+                graded.integrate(kernels, p0, cg, req, near_buf),
+                graded.base_from,
+            )
         };
         near_evaluations = near.evaluations;
         from_panel = from;
@@ -1257,29 +1375,48 @@ fn evaluate_on(
         // for: the graded region's sum plus A·Σ_{from ≤ j < node} w_j f_j F²_j (P ≥ P(G1) = A at
         // every node). Σ_{j ≥ node} is g_sum less the running sum, plus both sums' rounding (all
         // terms are positive). Then four more nodes for the divided differences.
+        // f², g² are evaluated in batches (`Kernels::interface_many`): below q·d = X_CUT in one,
+        // then CUT_CHUNK nodes at a time while the cut is looked for.
         let rounding = 4.0 * EPS * n as f64 * g_sum;
-        refill(f2, if req.sigma_interface { n } else { 0 }, 0.0);
-        refill(g2, if req.tau_interface { n } else { 0 }, 0.0);
+        refill(f2, n, 0.0);
+        refill(g2, n, 0.0);
         let mut to = grid.panels();
         let mut before = [near.sigma.0, near.tau.0];
         let mut running = if from > 0 { span_raw } else { 0.0 };
-        n_fg = 2 * from;
-        for j in 2 * from..n {
-            let (fj, gj) = kernels.interface(grid.q[j], grid.u[j]);
-            if req.sigma_interface {
-                f2[j] = fj;
+        let start = 2 * from;
+        let checked = start + grid.q[start..].partition_point(|&q| q * d < X_CUT);
+        let mut done = start;
+        let evaluate = |to: usize, done: &mut usize, f2: &mut [f64], g2: &mut [f64]| {
+            if to > *done {
+                let r = *done..to;
+                kernels.interface_many(
+                    &grid.q[r.clone()],
+                    &grid.u[r.clone()],
+                    &mut f2[r.clone()],
+                    &mut g2[r],
+                );
+                *done = to;
             }
-            if req.tau_interface {
-                g2[j] = gj;
+        };
+        evaluate(checked, &mut done, f2, g2);
+        for j in start..checked {
+            let wf = grid.w[j] * f[j];
+            running += wf;
+            before[0] += area.value * wf * f2[j];
+            before[1] += area.value * wf * g2[j];
+        }
+        for j in checked..n {
+            if j == done {
+                evaluate((j + CUT_CHUNK).min(n), &mut done, f2, g2);
             }
-            if j % 2 == 0 && grid.q[j] * d >= X_CUT {
+            let (fj, gj) = (f2[j], g2[j]);
+            if j % 2 == 0 {
                 let rest = (g_sum - running).max(0.0) + rounding;
                 let small = |want: bool, fv: f64, b: f64| !want || fv * rest <= tol * b;
                 if small(req.sigma_interface, fj, before[0])
                     && small(req.tau_interface, gj, before[1])
                 {
                     to = j / 2;
-                    n_fg = j + 1;
                     break;
                 }
             }
@@ -1287,18 +1424,9 @@ fn evaluate_on(
             running += wf;
             before[0] += area.value * wf * fj;
             before[1] += area.value * wf * gj;
-            n_fg = j + 1;
         }
-        while n_fg < (2 * to + 5).min(n) {
-            let (fj, gj) = kernels.interface(grid.q[n_fg], grid.u[n_fg]);
-            if req.sigma_interface {
-                f2[n_fg] = fj;
-            }
-            if req.tau_interface {
-                g2[n_fg] = gj;
-            }
-            n_fg += 1;
-        }
+        evaluate((2 * to + 5).min(n), &mut done, f2, g2);
+        n_fg = done;
         // Then the two-node panels. First G and P at every node (forward pass: running sum plus
         // the panel's partial integral), with the error of P from the error of G.
         // (Nodes and panels up to the cut.)
