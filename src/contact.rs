@@ -788,8 +788,8 @@ impl Graded {
         let lo = self.offsets[first];
         let (q, u) = (&self.nodes.0[lo..], &self.nodes.1[lo..]);
         let [k, f2, g2] = buf;
-        kernels.k_many(q, u, refill(k, q.len(), 0.0));
-        kernels.interface_many(q, u, refill(f2, q.len(), 0.0), refill(g2, q.len(), 0.0));
+        kernels.k_many(q, u, sized(k, q.len(), 0.0));
+        kernels.interface_many(q, u, sized(f2, q.len(), 0.0), sized(g2, q.len(), 0.0));
         let mut vals = [(0.0, 0.0, 0.0); 2 * GL_MAX - 1];
         for (p, panel) in self.panels.iter().enumerate().skip(first) {
             let r = self.offsets[p] - lo..self.offsets[p + 1] - lo;
@@ -1209,9 +1209,10 @@ thread_local! {
     static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::default();
 }
 
-/// `v` cleared and filled with `n` copies of `x`, keeping its allocation.
-fn refill<T: Copy>(v: &mut Vec<T>, n: usize, x: T) -> &mut Vec<T> {
-    v.clear();
+/// `v` resized to `n` entries, keeping its allocation and its old values (new entries are
+/// `x`): every buffer here is written before it is read, over the range that is read, so
+/// clearing it first only cost a memset of every buffer per evaluation.
+fn sized<T: Copy>(v: &mut Vec<T>, n: usize, x: T) -> &mut Vec<T> {
     v.resize(n, x);
     v
 }
@@ -1318,7 +1319,7 @@ fn evaluate_on(
         smooth,
         near_buf,
     } = scratch;
-    kernels.k_many(&grid.q, &grid.u, refill(kern, n, 0.0));
+    kernels.k_many(&grid.q, &grid.u, sized(kern, n, 0.0));
     if let Some(j) = kern.iter().position(|k| !k.is_finite()) {
         return Err(Error::Numerical {
             what: "layer response",
@@ -1378,8 +1379,8 @@ fn evaluate_on(
         // f², g² are evaluated in batches (`Kernels::interface_many`): below q·d = X_CUT in one,
         // then CUT_CHUNK nodes at a time while the cut is looked for.
         let rounding = 4.0 * EPS * n as f64 * g_sum;
-        refill(f2, n, 0.0);
-        refill(g2, n, 0.0);
+        sized(f2, n, 0.0);
+        sized(g2, n, 0.0);
         let mut to = grid.panels();
         let mut before = [near.sigma.0, near.tau.0];
         let mut running = if from > 0 { span_raw } else { 0.0 };
@@ -1430,13 +1431,13 @@ fn evaluate_on(
         // Then the two-node panels. First G and P at every node (forward pass: running sum plus
         // the panel's partial integral), with the error of P from the error of G.
         // (Nodes and panels up to the cut.)
-        refill(p_node, 2 * to, 0.0);
-        refill(g_node, 2 * to, 0.0);
+        sized(p_node, 2 * to, 0.0);
+        sized(g_node, 2 * to, 0.0);
         // |dP/dG| times the cumulative G error, and dP/dG times the signed partial-integral error.
-        refill(dp_cum, 2 * to, 0.0);
-        refill(dp_part, 2 * to, 0.0);
+        sized(dp_cum, 2 * to, 0.0);
+        sized(dp_part, 2 * to, 0.0);
         // P and its first four u-derivatives at each panel's first node, for the error terms.
-        refill(p_der, to, [0.0; 5]);
+        sized(p_der, to, [0.0; 5]);
         let mut g_left = near.g_raw;
         let mut g_left_err = near.g_raw_err;
         for (p, g_err) in g_errs.iter().enumerate().take(to).skip(from) {
@@ -1473,7 +1474,7 @@ fn evaluate_on(
         // ρ K F² at the nodes the sums and their divided differences use.
         let used = (2 * to + 5).min(n);
         let base = |k2: &[f64], a: &mut Vec<f64>, acc: (f64, f64)| {
-            refill(a, used, 0.0);
+            sized(a, used, 0.0);
             for j in 2 * from..used {
                 a[j] = grid.rho[j] * kern[j] * k2[j];
             }
