@@ -37,7 +37,7 @@ use crate::layer::{Bilayer, KernelTable, Squared, Stack};
 use crate::prec::{EPS, Estimate, KERNEL_RTOL, Settings, Termination};
 use crate::psd::Spectrum;
 use crate::quad::{self, ExpGauss2};
-use crate::special::erf_and_gauss;
+use crate::special::{erf_and_gauss, erf_and_gauss_many};
 use libm::{erf, erfc};
 use serde::Serialize;
 use statrs::function::erf::erfc_inv;
@@ -741,15 +741,16 @@ impl Graded {
         }
     }
 
-    /// The graded region's sums, with the kernels at all its nodes evaluated in two batches
-    /// (S⁻², then f² and g²) into `buf`.
+    /// The graded region's sums: the kernels at all its nodes in two batches (S⁻², then f² and
+    /// g²) into `buf`, G at all of them panel by panel, P at all of them in one batch, then the
+    /// panels' sums.
     fn integrate(
         &self,
         kernels: &Kernels,
         p0: f64,
         cg: f64,
         req: Request,
-        buf: &mut [Vec<f64>; 3],
+        buf: &mut [Vec<f64>; 6],
     ) -> Near {
         let (k0, f0, g0) = {
             let r = kernels.squared(self.q_l, self.q_l.ln());
@@ -768,12 +769,16 @@ impl Graded {
                     ..NEAR_NONE
                 };
                 let panel = &self.merged[i].1;
-                let mut vals = [(0.0, 0.0, 0.0); 2 * GL_MAX - 1];
-                for (v, &(q, u)) in vals.iter_mut().zip(&panel.sorted()[..2 * panel.n - 1]) {
+                let m = 2 * panel.n - 1;
+                let mut v = [[0.0; 2 * GL_MAX - 1]; 6];
+                for (j, &(q, u)) in panel.sorted()[..m].iter().enumerate() {
                     let r = kernels.squared(q, u);
-                    *v = (r.k, r.f2, r.g2);
+                    (v[0][j], v[1][j], v[2][j]) = (r.k, r.f2, r.g2);
                 }
-                self.add_panel(panel, &mut near, &vals, p0, cg, req);
+                let [k, f2, g2, x, p, gauss] = &mut v;
+                panel.arguments(k, &mut near, p0, cg, x);
+                erf_and_gauss_many(&x[..m], &mut p[..m], &mut gauss[..m]);
+                panel.sums(k, f2, g2, p, &mut near, req);
                 (near, i + 1)
             }
             None => {
@@ -792,82 +797,73 @@ impl Graded {
         };
         let lo = self.offsets[first];
         let (q, u) = (&self.nodes.0[lo..], &self.nodes.1[lo..]);
-        let [k, f2, g2] = buf;
-        kernels.k_many(q, u, sized(k, q.len(), 0.0));
-        kernels.interface_many(q, u, sized(f2, q.len(), 0.0), sized(g2, q.len(), 0.0));
-        let mut vals = [(0.0, 0.0, 0.0); 2 * GL_MAX - 1];
-        for (p, panel) in self.panels.iter().enumerate().skip(first) {
-            let r = self.offsets[p] - lo..self.offsets[p + 1] - lo;
-            for (v, ((&k, &f), &g)) in vals
-                .iter_mut()
-                .zip(k[r.clone()].iter().zip(&f2[r.clone()]).zip(&g2[r]))
-            {
-                *v = (k, f, g);
-            }
-            self.add_panel(panel, &mut near, &vals, p0, cg, req);
+        let m = q.len();
+        let [k, f2, g2, x, p, gauss] = buf;
+        kernels.k_many(q, u, sized(k, m, 0.0));
+        kernels.interface_many(q, u, sized(f2, m, 0.0), sized(g2, m, 0.0));
+        let range = |i: usize| self.offsets[i] - lo..self.offsets[i + 1] - lo;
+        sized(x, m, 0.0);
+        for (i, panel) in self.panels.iter().enumerate().skip(first) {
+            let r = range(i);
+            panel.arguments(&k[r.clone()], &mut near, p0, cg, &mut x[r]);
+        }
+        erf_and_gauss_many(x, sized(p, m, 0.0), sized(gauss, m, 0.0));
+        for (i, panel) in self.panels.iter().enumerate().skip(first) {
+            let r = range(i);
+            panel.sums(
+                &k[r.clone()],
+                &f2[r.clone()],
+                &g2[r.clone()],
+                &p[r],
+                &mut near,
+                req,
+            );
         }
         near
     }
+}
 
-    /// One n-point panel (and its (n − 1)-point companion) added to the sums, from S⁻², f², g²
-    /// at its 2n − 1 nodes in ascending order (`vals`).
-    fn add_panel(
-        &self,
-        panel: &GlPanel,
-        near: &mut Near,
-        vals: &[(f64, f64, f64)],
-        p0: f64,
-        cg: f64,
-        req: Request,
-    ) {
-        let n = panel.n;
-        let e_n: [(f64, f64, f64); GL_MAX] = std::array::from_fn(|k| {
-            if k < n {
-                vals[panel.at[k]]
-            } else {
-                (0.0, 0.0, 0.0)
-            }
-        });
-        let e_c: [(f64, f64, f64); GL_MAX - 1] = std::array::from_fn(|k| {
-            if k < n - 1 {
-                vals[panel.atc[k]]
-            } else {
-                (0.0, 0.0, 0.0)
-            }
-        });
-        let g_n: f64 = (0..n).map(|k| panel.w[k] * e_n[k].0).sum();
-        let g_c: f64 = (0..n - 1).map(|k| panel.wc[k] * e_c[k].0).sum();
-        let mut p_n = [0.0; GL_MAX];
-        let mut p_c = [0.0; GL_MAX - 1];
+impl GlPanel {
+    /// x = p0/(2√G) at the panel's 2n − 1 nodes (ascending, into `x`) from S⁻² there (`k`) and
+    /// G before the panel (`near.g_raw`, raw: without the factor cg); then the panel's n-node
+    /// integral of S⁻² added to G and its difference to the companion's to G's error.
+    fn arguments(&self, k: &[f64], near: &mut Near, p0: f64, cg: f64, x: &mut [f64]) {
+        let n = self.n;
+        let k_n: [f64; GL_MAX] = std::array::from_fn(|i| if i < n { k[self.at[i]] } else { 0.0 });
         let at = |row: &[f64; GL_MAX]| {
-            let partial: f64 = row.iter().zip(&e_n).take(n).map(|(b, e)| b * e.0).sum();
-            contact_probability(p0, cg * (near.g_raw + partial))
+            let partial: f64 = row.iter().zip(&k_n).take(n).map(|(b, k)| b * k).sum();
+            probability_argument(p0, cg * (near.g_raw + partial))
         };
-        for (p, row) in p_n.iter_mut().zip(&panel.b).take(n) {
-            *p = at(row);
+        for (row, &pos) in self.b.iter().zip(&self.at).take(n) {
+            x[pos] = at(row);
         }
-        for (p, row) in p_c.iter_mut().zip(&panel.bc).take(n - 1) {
-            *p = at(row);
+        for (row, &pos) in self.bc.iter().zip(&self.atc).take(n - 1) {
+            x[pos] = at(row);
         }
-        let add = |acc: &mut (f64, f64), pick: fn(&(f64, f64, f64)) -> f64| {
-            let i_n: f64 = (0..n)
-                .map(|k| panel.w[k] * e_n[k].0 * p_n[k] * pick(&e_n[k]))
-                .sum();
-            let i_c: f64 = (0..n - 1)
-                .map(|k| panel.wc[k] * e_c[k].0 * p_c[k] * pick(&e_c[k]))
-                .sum();
+        let g_n: f64 = (0..n).map(|i| self.w[i] * k_n[i]).sum();
+        let g_c: f64 = (0..n - 1).map(|i| self.wc[i] * k[self.atc[i]]).sum();
+        near.g_raw += g_n;
+        near.g_raw_err += (g_n - g_c).abs();
+        near.evaluations += 2 * n - 1;
+    }
+
+    /// The panel's σ and τ sums (n nodes; error: the difference to the companion's) added to
+    /// `near`, from S⁻², f², g² and P at its 2n − 1 nodes (ascending).
+    fn sums(&self, k: &[f64], f2: &[f64], g2: &[f64], p: &[f64], near: &mut Near, req: Request) {
+        let n = self.n;
+        let add = |acc: &mut (f64, f64), k2: &[f64]| {
+            let term = |w: f64, j: usize| w * k[j] * p[j] * k2[j];
+            let i_n: f64 = (0..n).map(|i| term(self.w[i], self.at[i])).sum();
+            let i_c: f64 = (0..n - 1).map(|i| term(self.wc[i], self.atc[i])).sum();
             acc.0 += i_n;
             acc.1 += (i_n - i_c).abs() + 8.0 * EPS * i_n.abs();
         };
         if req.sigma_interface {
-            add(&mut near.sigma, |e| e.1);
+            add(&mut near.sigma, f2);
         }
         if req.tau_interface {
-            add(&mut near.tau, |e| e.2);
+            add(&mut near.tau, g2);
         }
-        near.g_raw += g_n;
-        near.g_raw_err += (g_n - g_c).abs();
-        near.evaluations += 2 * n - 1;
     }
 }
 
@@ -1206,8 +1202,11 @@ struct Scratch {
     dp_part: Vec<f64>,
     p_der: Vec<[f64; 5]>,
     smooth: Vec<f64>,
-    /// S⁻², f², g² at the graded region's nodes.
-    near_buf: [Vec<f64>; 3],
+    /// x = p0/(2√G) and e^{−x²} (then |dP/dG|) at the nodes.
+    x_node: Vec<f64>,
+    gauss: Vec<f64>,
+    /// S⁻², f², g², x, P and e^{−x²} at the graded region's nodes.
+    near_buf: [Vec<f64>; 6],
 }
 
 thread_local! {
@@ -1237,25 +1236,37 @@ fn ln_ratio(a: f64, b: f64) -> f64 {
     }
 }
 
-/// P(G) = erf(p0 / (2√G)), with P(0) = 1.
-fn contact_probability(p0: f64, g: f64) -> f64 {
-    if g <= 0.0 {
-        1.0
+/// x = p0/(2√G), the argument of P = erf(x); ∞ at G = 0 (P = 1 there).
+#[inline]
+fn probability_argument(p0: f64, g: f64) -> f64 {
+    if g > 0.0 {
+        0.5 * p0 / g.sqrt()
     } else {
-        erf_and_gauss(0.5 * p0 / g.sqrt()).0
+        f64::INFINITY
     }
 }
 
-/// P(G) = erf(x) and |dP/dG| = (p0 / (2√π)) G^{-3/2} e^{-p0²/(4G)} = x e^{−x²} r²/√π, with
-/// r = 1/√G and x = p0 r/2 (one division); (1, 0) at G = 0.
-fn probability_and_slope(p0: f64, g: f64) -> (f64, f64) {
-    if g <= 0.0 {
-        return (1.0, 0.0);
+/// |dP/dG| = (p0 / (2√π)) G^{-3/2} e^{-p0²/(4G)} = (4/(√π p0²)) x³ e^{−x²} at x = p0/(2√G),
+/// from e^{−x²} (`gauss`); 0 at G = 0 (x = ∞).
+#[inline]
+fn probability_slope(p0: f64, x: f64, gauss: f64) -> f64 {
+    if gauss > 0.0 {
+        x * x * x * gauss * (2.0 * FRAC_2_SQRT_PI / (p0 * p0))
+    } else {
+        0.0
     }
-    let r = 1.0 / g.sqrt();
-    let x = 0.5 * p0 * r;
+}
+
+/// P(G) = erf(p0 / (2√G)), with P(0) = 1.
+fn contact_probability(p0: f64, g: f64) -> f64 {
+    erf_and_gauss(probability_argument(p0, g)).0
+}
+
+/// P(G) and |dP/dG| ([`probability_slope`]); (1, 0) at G = 0.
+fn probability_and_slope(p0: f64, g: f64) -> (f64, f64) {
+    let x = probability_argument(p0, g);
     let (p, gauss) = erf_and_gauss(x);
-    (p, x * gauss * (r * r) * (0.5 * FRAC_2_SQRT_PI))
+    (p, probability_slope(p0, x, gauss))
 }
 
 /// P(G(u)) and its first four u-derivatives, for G' = `gp` at G = `g` growing locally like
@@ -1338,6 +1349,8 @@ fn evaluate_on(
         dp_part,
         p_der,
         smooth,
+        x_node,
+        gauss,
         near_buf,
     } = scratch;
     kernels.k_many(&grid.q, &grid.u, sized(kern, n, 0.0));
@@ -1449,12 +1462,16 @@ fn evaluate_on(
         }
         evaluate((2 * to + 5).min(n), &mut done, f2, g2);
         n_fg = done;
-        // Then the two-node panels. First G and P at every node (forward pass: running sum plus
-        // the panel's partial integral), with the error of P from the error of G.
-        // (Nodes and panels up to the cut.)
+        // Then the two-node panels. First G at every node (forward pass: running sum plus the
+        // panel's partial integral), then P and its slope at all of them in one batch, then the
+        // error of P from the error of G. (Nodes and panels up to the cut.)
+        let nodes = 2 * from..2 * to;
         sized(p_node, 2 * to, 0.0);
         sized(g_node, 2 * to, 0.0);
-        // |dP/dG| times the cumulative G error, and dP/dG times the signed partial-integral error.
+        sized(x_node, 2 * to, 0.0);
+        sized(gauss, 2 * to, 0.0);
+        // |dP/dG| times the cumulative G error, and dP/dG times the signed partial-integral error
+        // (first the G errors alone).
         sized(dp_cum, 2 * to, 0.0);
         sized(dp_part, 2 * to, 0.0);
         // P and its first four u-derivatives at each panel's first node, for the error terms.
@@ -1469,25 +1486,37 @@ fn evaluate_on(
             } else {
                 0.0
             };
-            let mut slopes = [0.0; 2];
             for (jj, j) in [j0, j1].into_iter().enumerate() {
-                let gv =
+                g_node[j] =
                     cg * (g_left + grid.partial[p][jj][0] * f[j0] + grid.partial[p][jj][1] * f[j1]);
-                let (pv, sv) = probability_and_slope(p0, gv);
-                p_node[j] = pv;
-                g_node[j] = gv;
-                slopes[jj] = sv;
-                let slope = slopes[jj] * cg;
-                dp_cum[j] = slope * g_left_err;
-                dp_part[j] = slope * psi2 * grid.partial_curv[p][jj];
+                dp_cum[j] = cg * g_left_err;
+                dp_part[j] = cg * psi2 * grid.partial_curv[p][jj];
             }
+            g_left += grid.w[j0] * f[j0] + grid.w[j1] * f[j1];
+            g_left_err += g_err;
+        }
+        for (x, &g) in x_node[nodes.clone()].iter_mut().zip(&g_node[nodes.clone()]) {
+            *x = probability_argument(p0, g);
+        }
+        erf_and_gauss_many(
+            &x_node[nodes.clone()],
+            &mut p_node[nodes.clone()],
+            &mut gauss[nodes.clone()],
+        );
+        // The slopes |dP/dG| (into `gauss`), and the errors of P.
+        for j in nodes {
+            let slope = probability_slope(p0, x_node[j], gauss[j]);
+            gauss[j] = slope;
+            dp_cum[j] *= slope;
+            dp_part[j] *= slope;
+        }
+        for (p, der) in p_der.iter_mut().enumerate().take(to).skip(from) {
+            let (j0, j1) = (2 * p, 2 * p + 1);
             // G' = cg W K ρ at the node, growing locally like e^{λu}: λ = d ln W/du + d ln(Kρ)/du
             // across the panel's two nodes.
             let gp = cg * grid.w_at[j0] * f[j0];
             let lam = grid.beta[p] + ln_ratio(f[j1], f[j0]) * grid.inv_gap[p];
-            p_der[p] = probability_derivatives(p0, g_node[j0], slopes[0], gp, lam, p_node[j0]);
-            g_left += grid.w[j0] * f[j0] + grid.w[j1] * f[j1];
-            g_left_err += g_err;
+            *der = probability_derivatives(p0, g_node[j0], gauss[j0], gp, lam, p_node[j0]);
         }
         // Beyond the last panel P ≤ 1 and F² ≤ its value at the first node left out (f², g²
         // decrease for q·d ≥ X_CUT), so the tail is at most F²(that node)·Σ w ρ K.
