@@ -1434,11 +1434,17 @@ fn evaluate_on(
             }
         };
         evaluate(checked, &mut done, f2, g2);
-        for j in start..checked {
-            let wf = grid.w[j] * f[j];
+        let r = start..checked;
+        for (((&w, &fj), &f2j), &g2j) in grid.w[r.clone()]
+            .iter()
+            .zip(&f[r.clone()])
+            .zip(&f2[r.clone()])
+            .zip(&g2[r])
+        {
+            let wf = w * fj;
             running += wf;
-            before[0] += area.value * wf * f2[j];
-            before[1] += area.value * wf * g2[j];
+            before[0] += area.value * wf * f2j;
+            before[1] += area.value * wf * g2j;
         }
         for j in checked..n {
             if j == done {
@@ -1525,8 +1531,9 @@ fn evaluate_on(
         let used = (2 * to + 5).min(n);
         let base = |k2: &[f64], a: &mut Vec<f64>, acc: (f64, f64)| {
             sized(a, used, 0.0);
-            for j in 2 * from..used {
-                a[j] = grid.rho[j] * kern[j] * k2[j];
+            let r = 2 * from..used;
+            for ((a, &fj), &k2) in a[r.clone()].iter_mut().zip(&f[r.clone()]).zip(&k2[r]) {
+                *a = fj * k2;
             }
             let (v, e) = grid.interface_sum(a, p_node, dp_cum, dp_part, p_der, from, to);
             let tail = k2.get(2 * to).map_or(0.0, |&k2c| k2c * tail_weight);
