@@ -7,7 +7,8 @@
 //! the panel ([`crate::cheb`]: stored as monomials in the panel's local variable t ∈ [−1, 1],
 //! evaluated by Estrin's scheme). The tabulated
 //! functions are K = S⁻², F = f² e^{2x} and Γ = g² e^{2x}: all smooth in y with no large dynamic
-//! range across a panel (f and g decay like e^{−x}, which the table leaves to one `exp` per point).
+//! range across a panel (f and g decay like e^{−x}, which the table leaves to one `exp` per point);
+//! panels below q·d = [`X_DIRECT`] hold f² and g² themselves and need no `exp`.
 //!
 //! Accuracy is checked when the table is built, not assumed: every panel is compared with the
 //! exact kernels at points between its interpolation nodes and at its ends; if any differs by
@@ -59,7 +60,15 @@ pub struct KernelTable {
     g: Vec<[f64; N]>,
     /// f e^x and g e^x above [`X_FAR`]: intercepts and slopes.
     far: [[f64; 2]; 2],
+    /// Panels [0, direct) lie below [`X_DIRECT`] and hold f², g² themselves.
+    direct: usize,
 }
+
+/// Panels that end below this q·d tabulate f² and g² themselves, not times e^{2x}: e^{−2x} is
+/// smooth in y there (it changes by less than a factor e^{−1.1} across a panel), and the
+/// evaluation saves its `exp`. Their accuracy is checked relative to every value checked, not
+/// to the panel's largest.
+pub const X_DIRECT: f64 = 2.0;
 
 /// f e^x and g e^x as lines a + b x above [`X_FAR`], through the exact values at 40 and 80.
 fn far_lines(layers: &Bilayer) -> [[f64; 2]; 2] {
@@ -73,10 +82,13 @@ fn far_lines(layers: &Bilayer) -> [[f64; 2]; 2] {
     [line(ra.f * ea, rb.f * eb), line(ra.g * ea, rb.g * eb)]
 }
 
-/// The exact values tabulated at y.
-fn exact(layers: &Bilayer, y: f64) -> [f64; 3] {
+/// The exact values tabulated at y: S⁻², and f², g² themselves (`direct`) or times e^{2x}.
+fn exact(layers: &Bilayer, y: f64, direct: bool) -> [f64; 3] {
     let x = y.exp();
     let r = layers.response(x);
+    if direct {
+        return [1.0 / (r.s * r.s), r.f * r.f, r.g * r.g];
+    }
     // (f e^x)², not f² e^{2x}: near x = 700 the latter under- and overflows.
     let e = x.exp();
     [1.0 / (r.s * r.s), (r.f * e).powi(2), (r.g * e).powi(2)]
@@ -113,6 +125,7 @@ impl KernelTable {
             0.5 * (nodes[N - 2] + nodes[N - 1]),
             0.5 * (nodes[N / 2 - 1] + nodes[N / 2]),
         ];
+        let direct = (((X_DIRECT.ln() - y0) / width).floor().max(0.0) as usize).min(panels);
         let mut table = KernelTable {
             layers,
             y0,
@@ -122,10 +135,11 @@ impl KernelTable {
             f: Vec::with_capacity(panels),
             g: Vec::with_capacity(panels),
             far: far_lines(&layers),
+            direct,
         };
         for p in 0..panels {
             let centre = y0 + (p as f64 + 0.5) * width;
-            let at = |t: f64| exact(&layers, centre + 0.5 * width * t);
+            let at = |t: f64| exact(&layers, centre + 0.5 * width * t, p < direct);
             let vals: [[f64; 3]; N] = std::array::from_fn(|j| at(nodes[j]));
             let mut coef = [[0.0; N]; 3];
             for (q, c) in coef.iter_mut().enumerate() {
@@ -134,10 +148,13 @@ impl KernelTable {
             for &t in &checks {
                 let want = at(t);
                 for q in 0..3 {
-                    let scale = vals
-                        .iter()
-                        .map(|v| v[q].abs())
-                        .fold(want[q].abs(), f64::max);
+                    let scale = if p < direct && q > 0 {
+                        want[q].abs()
+                    } else {
+                        vals.iter()
+                            .map(|v| v[q].abs())
+                            .fold(want[q].abs(), f64::max)
+                    };
                     if (poly(&coef[q], t) - want[q]).abs() > TABLE_RTOL * scale {
                         return None;
                     }
@@ -246,7 +263,10 @@ impl KernelTable {
         g2: &mut [f64],
     ) {
         let near = q.partition_point(|&q| q * d <= X_FAR);
-        for (e, &q) in f2[..near].iter_mut().zip(&q[..near]) {
+        // Nodes in direct panels first: no e^{−2x}.
+        let direct = self.direct as f64;
+        let split = u[..near].partition_point(|&v| self.scaled(v + ln_d) < direct);
+        for (e, &q) in f2[split..near].iter_mut().zip(&q[split..near]) {
             *e = exp_nonpositive(-2.0 * (q * d));
         }
         let mut j = 0;
@@ -254,15 +274,22 @@ impl KernelTable {
             let (p, len, b) = self.run(&u[j..near], ln_d);
             let (cf, cg) = (&self.f[p], &self.g[p]);
             let range = j..j + len;
-            for ((fo, go), &v) in f2[range.clone()]
+            let out = f2[range.clone()]
                 .iter_mut()
                 .zip(&mut g2[range.clone()])
-                .zip(&u[range])
-            {
-                let t = 2.0 * self.scaled(v + ln_d) + b;
-                let e = *fo;
-                *fo = poly(cf, t) * e;
-                *go = poly(cg, t) * e;
+                .zip(&u[range]);
+            if p < self.direct {
+                for ((fo, go), &v) in out {
+                    let t = 2.0 * self.scaled(v + ln_d) + b;
+                    (*fo, *go) = (poly(cf, t), poly(cg, t));
+                }
+            } else {
+                for ((fo, go), &v) in out {
+                    let t = 2.0 * self.scaled(v + ln_d) + b;
+                    let e = *fo;
+                    *fo = poly(cf, t) * e;
+                    *go = poly(cg, t) * e;
+                }
             }
             j += len;
         }
@@ -287,7 +314,11 @@ impl KernelTable {
             return (f * f, g * g);
         }
         let (p, t) = self.locate(y);
+        let (f, g) = (poly(&self.f[p], t), poly(&self.g[p], t));
+        if p < self.direct {
+            return (f, g);
+        }
         let e = exp_nonpositive(-2.0 * x);
-        (poly(&self.f[p], t) * e, poly(&self.g[p], t) * e)
+        (f * e, g * e)
     }
 }
