@@ -21,7 +21,9 @@
 //! from the same rule's partial integrals (exact for ψ linear on the panel).
 //! The kernels S⁻², f², g² at the nodes come from a [`KernelTable`] of the material pair (built
 //! once per engine and pair, checked against the exact forms to 2e−14 relative; the exact forms
-//! when no table resolves them), two to four times cheaper than the stable forms themselves.
+//! when no table resolves them), two to four times cheaper than the stable forms themselves,
+//! and evaluated at all nodes in batches (`KernelTable::k_many`, `interface_many`), as is P
+//! (`special::erf_and_gauss_many`): the per-node loops have no branches and are vectorised.
 //! Interface tail: above q·d = 20 f e^x and g e^x are linear in x to 1e−15 (the far field of
 //! `layer::KernelTable`: the stable forms' e^{−2x} terms are below x²e^{−2x} < 2e−15 there), and
 //! (a + bx)e^{−x} with a/b ≥ 0 decreases for x > 1: f² and g² decrease. The interface integrals
