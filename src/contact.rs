@@ -132,10 +132,9 @@ struct Grid {
     low_octave_panels: usize,
     /// ∫W du and its error estimate (E_eff's denominator).
     bare: (f64, f64),
-    /// Per start node s: weights of the divided differences f[u_s, …, u_{s+k}], k = 1..4 (row
-    /// k − 1), over the nodes s..s+k (zero where the grid ends first). d-independent, so the
-    /// error estimates take a dot product instead of Newton's table with its divisions.
-    dd: Vec<[[f64; 5]; 4]>,
+    /// 1/(u_{j+k} − u_j) for k = 1..4 (entry k − 1; n − k of them), for Newton's divided
+    /// differences without a division ([`Grid::newton`]).
+    inv_span: [Vec<f64>; 4],
 }
 
 /// The grid's knots: the spectrum's own, with 2 q_L inserted, and how many panels each knot
@@ -214,7 +213,7 @@ impl Grid {
             lw_left: Vec::with_capacity(panels),
             low_octave_panels: 0,
             bare: (0.0, 0.0),
-            dd: vec![],
+            inv_span: Default::default(),
         };
         let ln_w = |u: f64| 4.0 * u + spectrum.c(u.exp()).ln();
         // Between knots of a piecewise power law, ln W is linear in u and W_ref = W (ρ = 1).
@@ -311,28 +310,13 @@ impl Grid {
                 }
             }
         }
-        g.dd = (0..g.u.len())
-            .map(|s| {
-                let u = &g.u[s..(s + 5).min(g.u.len())];
-                // 1/(u_m − u_l) once per pair of the window.
-                let mut inv = [[0.0; 5]; 5];
-                for m in 0..u.len() {
-                    for l in 0..m {
-                        inv[m][l] = 1.0 / (u[m] - u[l]);
-                        inv[l][m] = -inv[m][l];
-                    }
-                }
-                std::array::from_fn(|row| {
-                    let k = row + 1;
-                    std::array::from_fn(|m| {
-                        if k >= u.len() || m > k {
-                            return 0.0;
-                        }
-                        (0..=k).filter(|&l| l != m).map(|l| inv[m][l]).product()
-                    })
-                })
-            })
-            .collect();
+        g.inv_span = std::array::from_fn(|i| {
+            let k = i + 1;
+            g.u.iter()
+                .zip(g.u.iter().skip(k))
+                .map(|(a, b)| 1.0 / (b - a))
+                .collect()
+        });
         g.bare = g.bare_integral();
         g
     }
@@ -347,13 +331,24 @@ impl Grid {
         (self.lw_left[p] + self.beta[p] * (u - self.left[p])).exp()
     }
 
-    /// The divided difference f[u_s, …, u_{s+k}] (k ≤ 4, s + k within the grid).
-    fn divided(&self, s: usize, k: usize, f: &[f64]) -> f64 {
-        self.dd[s][k - 1][..=k]
-            .iter()
-            .zip(&f[s..=s + k])
-            .map(|(w, v)| w * v)
-            .sum()
+    /// Newton's divided differences of `f` over the nodes lo..hi: `out[k − 1][j]` =
+    /// f[u_j, …, u_{j+k}] for k = 1..4 and lo ≤ j < hi − k (each `out[k − 1]` made hi long;
+    /// other entries are left as they were). Each level is one loop over consecutive nodes, with
+    /// the grid's reciprocal spans for the divisions: vectorised.
+    fn newton(&self, f: &[f64], lo: usize, hi: usize, out: &mut [Vec<f64>; 4]) {
+        for k in 1..=4 {
+            let end = hi.saturating_sub(k).max(lo);
+            let (done, todo) = out.split_at_mut(k - 1);
+            let prev: &[f64] = if k == 1 { f } else { &done[k - 2] };
+            let cur = sized(&mut todo[0], hi, 0.0);
+            for ((c, &inv), (a, b)) in cur[lo..end]
+                .iter_mut()
+                .zip(&self.inv_span[k - 1][lo..end])
+                .zip(prev[lo..end].iter().zip(&prev[lo + 1..end + 1]))
+            {
+                *c = (b - a) * inv;
+            }
+        }
     }
 
     fn panels(&self) -> usize {
@@ -361,8 +356,9 @@ impl Grid {
     }
 
     /// Per-panel error estimates of Σ w f, f = ρψ: the Gauss error term with ψ⁗ from the fourth
-    /// divided difference of f over five neighbouring nodes.
-    fn panel_errors(&self, f: &[f64], out: &mut Vec<f64>) {
+    /// divided difference of f over five neighbouring nodes (`d4`: [`Grid::newton`]'s fourth
+    /// level over all nodes).
+    fn panel_errors(&self, d4: &[f64], out: &mut Vec<f64>) {
         let n = self.q.len();
         out.clear();
         out.extend((0..self.panels()).map(|p| {
@@ -370,7 +366,7 @@ impl Grid {
                 return 0.0;
             }
             let start = (2 * p).saturating_sub(2).min(n - 5);
-            ERR_SAFETY * self.err4[p] * (24.0 * self.divided(start, 4, f)).abs()
+            ERR_SAFETY * self.err4[p] * (24.0 * d4[start]).abs()
         }));
     }
 
@@ -389,8 +385,9 @@ impl Grid {
 
     /// ∫W du (Σ_j w_j ρ_j) with its error estimate, for E_eff.
     fn bare_integral(&self) -> (f64, f64) {
-        let mut errs = vec![];
-        self.panel_errors(&self.rho, &mut errs);
+        let (mut errs, mut dd) = (vec![], Default::default());
+        self.newton(&self.rho, 0, self.q.len(), &mut dd);
+        self.panel_errors(&dd[3], &mut errs);
         self.sum_with_errors(&self.rho, &errs)
     }
 
@@ -409,6 +406,7 @@ impl Grid {
     fn interface_sum(
         &self,
         a: &[f64],
+        dd: &mut [Vec<f64>; 4],
         p_node: &[f64],
         dp_cum: &[f64],
         dp_part: &[f64],
@@ -419,6 +417,9 @@ impl Grid {
         let n = self.q.len();
         let lo = 2 * from;
         let differenced = n >= lo + 5;
+        if differenced {
+            self.newton(a, lo, a.len(), dd);
+        }
         let (mut v, mut gauss, mut dp) = (0.0, 0.0, 0.0);
         for (p, pd) in p_der.iter().enumerate().take(to).skip(from) {
             let (j0, j1) = (2 * p, 2 * p + 1);
@@ -429,14 +430,11 @@ impl Grid {
                 + ERR_SAFETY * (wa0 * dp_part[j0] + wa1 * dp_part[j1]).abs();
             if differenced {
                 let start = j0.saturating_sub(2).max(lo).min(n - 5);
-                let win: &[f64; 5] = a[start..start + 5].try_into().expect("five nodes");
-                // f[u_s..u_{s+k}] ≈ a^(k)/k! (the weights are zero past node s + k).
-                let dot = |row: &[f64; 5]| row.iter().zip(win).map(|(r, v)| r * v).sum::<f64>();
-                let dd = &self.dd[start];
-                let d4 = 24.0 * dot(&dd[3]) * pd[0]
-                    + 4.0 * 6.0 * dot(&dd[2]) * pd[1]
-                    + 6.0 * 2.0 * dot(&dd[1]) * pd[2]
-                    + 4.0 * dot(&dd[0]) * pd[3]
+                // a[u_s..u_{s+k}] ≈ a^(k)/k!.
+                let d4 = 24.0 * dd[3][start] * pd[0]
+                    + 4.0 * 6.0 * dd[2][start] * pd[1]
+                    + 6.0 * 2.0 * dd[1][start] * pd[2]
+                    + 4.0 * dd[0][start] * pd[3]
                     + a[j0] * pd[4];
                 gauss += ERR_SAFETY * self.err4[p] * d4.abs();
             }
@@ -1204,6 +1202,9 @@ struct Scratch {
     dp_part: Vec<f64>,
     p_der: Vec<[f64; 5]>,
     smooth: Vec<f64>,
+    /// Divided differences (`Grid::newton`) of ρK and of ρK F².
+    f_dd: [Vec<f64>; 4],
+    a_dd: [Vec<f64>; 4],
     /// x = p0/(2√G) and e^{−x²} (then |dP/dG|) at the nodes.
     x_node: Vec<f64>,
     gauss: Vec<f64>,
@@ -1275,35 +1276,34 @@ fn probability_and_slope(p0: f64, g: f64) -> (f64, f64) {
 /// e^{λu} (G'' = λG', G''' = λ²G', G'''' = λ³G'), by Faà di Bruno's formula with
 /// P_k = d^k P/dG^k = −(a/√π) e^{−w} G^{−(2k+1)/2} Q_k(w), a = p0/2, w = a²/G,
 /// Q1 = 1, Q2 = w − 3/2, Q3 = w² − 5w + 15/4, Q4 = w³ − 21w²/2 + 105w/4 − 105/8.
-/// `slope` is |dP/dG| = −P_1 at G ([`probability_and_slope`]), passed in to spare its `exp`.
-fn probability_derivatives(p0: f64, g: f64, slope: f64, gp: f64, lam: f64, p: f64) -> [f64; 5] {
-    if g <= 0.0 {
+/// Given x = a/√G (∞ at G = 0) and 1/a² rather than G: w = x² and 1/G = x²/a² without a division.
+/// `slope` is |dP/dG| = −P_1 at G ([`probability_slope`]), passed in to spare its `exp`.
+fn probability_derivatives(x: f64, inv_a2: f64, slope: f64, gp: f64, lam: f64, p: f64) -> [f64; 5] {
+    if slope == 0.0 {
+        // G = 0 (x = ∞) or e^{−x²} = 0 in f64: every derivative carries that factor.
         return [p, 0.0, 0.0, 0.0, 0.0];
     }
-    let a = 0.5 * p0;
-    let inv_g = 1.0 / g;
-    let w = a * a * inv_g;
-    let q = [
-        1.0,
-        w - 1.5,
-        w * w - 5.0 * w + 3.75,
-        w * w * w - 10.5 * w * w + 26.25 * w - 13.125,
-    ];
+    // w = a²/G = x², 1/G = x²/a².
+    let w = x * x;
+    let inv_g = w * inv_a2;
+    let q1 = w - 1.5;
+    let q2 = w * (w - 5.0) + 3.75;
+    let q3 = w * (w * (w - 10.5) + 26.25) - 13.125;
     // P_k = −|P_1| G^{1−k} Q_k.
-    let pk: [f64; 4] = [
-        -slope * q[0],
-        -slope * inv_g * q[1],
-        -slope * inv_g * inv_g * q[2],
-        -slope * inv_g * inv_g * inv_g * q[3],
-    ];
-    let (g1, g2, g3, g4) = (gp, gp * lam, gp * lam * lam, gp * lam * lam * lam);
+    let s0 = -slope;
+    let s1 = s0 * inv_g;
+    let s2 = s1 * inv_g;
+    let pk = [s0, s1 * q1, s2 * q2, s2 * inv_g * q3];
+    let (g1, g2) = (gp, gp * lam);
+    let (g3, g4) = (g2 * lam, g2 * lam * lam);
+    let g1sq = g1 * g1;
     [
         p,
         pk[0] * g1,
-        pk[1] * g1 * g1 + pk[0] * g2,
-        pk[2] * g1.powi(3) + 3.0 * pk[1] * g1 * g2 + pk[0] * g3,
-        pk[3] * g1.powi(4)
-            + 6.0 * pk[2] * g1 * g1 * g2
+        pk[1] * g1sq + pk[0] * g2,
+        pk[2] * g1sq * g1 + 3.0 * pk[1] * g1 * g2 + pk[0] * g3,
+        pk[3] * g1sq * g1sq
+            + 6.0 * pk[2] * g1sq * g2
             + pk[1] * (4.0 * g1 * g3 + 3.0 * g2 * g2)
             + pk[0] * g4,
     ]
@@ -1351,6 +1351,8 @@ fn evaluate_on(
         dp_part,
         p_der,
         smooth,
+        f_dd,
+        a_dd,
         x_node,
         gauss,
         near_buf,
@@ -1364,7 +1366,8 @@ fn evaluate_on(
     }
     f.clear();
     f.extend(kern.iter().zip(&grid.rho).map(|(k, r)| k * r));
-    grid.panel_errors(f, g_errs);
+    grid.newton(f, 0, n, f_dd);
+    grid.panel_errors(&f_dd[3], g_errs);
     let (g_sum, g_err) = grid.sum_with_errors(f, g_errs);
     let g1 = Estimate::new(cg * g_sum, cg * g_err, Termination::Converged);
     let area = g1.map(
@@ -1489,11 +1492,7 @@ fn evaluate_on(
         for (p, g_err) in g_errs.iter().enumerate().take(to).skip(from) {
             let (j0, j1) = (2 * p, 2 * p + 1);
             let start = j0.saturating_sub(1).min(n.saturating_sub(3));
-            let psi2 = if n >= 3 {
-                2.0 * grid.divided(start, 2, f)
-            } else {
-                0.0
-            };
+            let psi2 = if n >= 3 { 2.0 * f_dd[1][start] } else { 0.0 };
             for (jj, j) in [j0, j1].into_iter().enumerate() {
                 g_node[j] =
                     cg * (g_left + grid.partial[p][jj][0] * f[j0] + grid.partial[p][jj][1] * f[j1]);
@@ -1518,26 +1517,27 @@ fn evaluate_on(
             dp_cum[j] *= slope;
             dp_part[j] *= slope;
         }
+        let inv_a2 = 4.0 / (p0 * p0);
         for (p, der) in p_der.iter_mut().enumerate().take(to).skip(from) {
             let (j0, j1) = (2 * p, 2 * p + 1);
             // G' = cg W K ρ at the node, growing locally like e^{λu}: λ = d ln W/du + d ln(Kρ)/du
             // across the panel's two nodes.
             let gp = cg * grid.w_at[j0] * f[j0];
             let lam = grid.beta[p] + ln_ratio(f[j1], f[j0]) * grid.inv_gap[p];
-            *der = probability_derivatives(p0, g_node[j0], gauss[j0], gp, lam, p_node[j0]);
+            *der = probability_derivatives(x_node[j0], inv_a2, gauss[j0], gp, lam, p_node[j0]);
         }
         // Beyond the last panel P ≤ 1 and F² ≤ its value at the first node left out (f², g²
         // decrease for q·d ≥ X_CUT), so the tail is at most F²(that node)·Σ w ρ K.
         let tail_weight: f64 = (2 * to..n).map(|j| grid.w[j] * f[j]).sum();
         // ρ K F² at the nodes the sums and their divided differences use.
         let used = (2 * to + 5).min(n);
-        let base = |k2: &[f64], a: &mut Vec<f64>, acc: (f64, f64)| {
+        let mut base = |k2: &[f64], a: &mut Vec<f64>, acc: (f64, f64)| {
             sized(a, used, 0.0);
             let r = 2 * from..used;
             for ((a, &fj), &k2) in a[r.clone()].iter_mut().zip(&f[r.clone()]).zip(&k2[r]) {
                 *a = fj * k2;
             }
-            let (v, e) = grid.interface_sum(a, p_node, dp_cum, dp_part, p_der, from, to);
+            let (v, e) = grid.interface_sum(a, a_dd, p_node, dp_cum, dp_part, p_der, from, to);
             let tail = k2.get(2 * to).map_or(0.0, |&k2c| k2c * tail_weight);
             (acc.0 + v, acc.1 + e + tail)
         };
