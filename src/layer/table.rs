@@ -10,6 +10,11 @@
 //! range across a panel (f and g decay like e^{−x}, which the table leaves to one `exp` per point);
 //! panels below q·d = [`X_DIRECT`] hold f² and g² themselves and need no `exp`.
 //!
+//! Batches ([`KernelTable::k_many`], [`KernelTable::interface_many`]): one polynomial per run of
+//! nodes in a panel, in loops without branches that the compiler vectorises, compiled twice (the
+//! baseline, and for AVX2, chosen at run time); both give the single-point values to the last
+//! bit.
+//!
 //! Accuracy is checked when the table is built, not assumed: every panel is compared with the
 //! exact kernels at points between its interpolation nodes and at its ends; if any differs by
 //! more than [`TABLE_RTOL`] of the panel's largest value the whole table is rebuilt with panels
