@@ -35,7 +35,7 @@
 //! [`MAX_REFINE`] times, and reports `ToleranceNotReached` if it still misses.
 
 use crate::error::Error;
-use crate::layer::{Bilayer, KernelTable, Squared, Stack};
+use crate::layer::{Bilayer, KernelTable, Nodes, Squared, Stack};
 use crate::prec::{EPS, Estimate, KERNEL_RTOL, Settings, Termination};
 use crate::psd::Spectrum;
 use crate::quad::{self, ExpGauss2};
@@ -936,7 +936,7 @@ impl Kernels<'_> {
     /// S⁻² at the ascending nodes (q, u), into `out`.
     fn k_many(&self, q: &[f64], u: &[f64], out: &mut [f64]) {
         match *self {
-            Kernels::Table { table, d, ln_d } => table.k_many(q, u, d, ln_d, out),
+            Kernels::Table { table, d, ln_d } => table.k_many(Nodes { q, u, d, ln_d }, out),
             Kernels::Exact { .. } => {
                 for ((o, &q), &u) in out.iter_mut().zip(q).zip(u) {
                     *o = self.k(q, u);
@@ -948,7 +948,9 @@ impl Kernels<'_> {
     /// f², g² at the ascending nodes (q, u), into `f2` and `g2`.
     fn interface_many(&self, q: &[f64], u: &[f64], f2: &mut [f64], g2: &mut [f64]) {
         match *self {
-            Kernels::Table { table, d, ln_d } => table.interface_many(q, u, d, ln_d, f2, g2),
+            Kernels::Table { table, d, ln_d } => {
+                table.interface_many(Nodes { q, u, d, ln_d }, f2, g2)
+            }
             Kernels::Exact { .. } => {
                 for (((fo, go), &q), &u) in f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u) {
                     (*fo, *go) = self.interface(q, u);

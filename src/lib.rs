@@ -27,6 +27,7 @@ pub mod psd;
 pub mod quad;
 pub mod report;
 pub mod scene;
+mod simd;
 pub mod special;
 pub mod tomlin;
 pub mod topography;

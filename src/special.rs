@@ -20,6 +20,7 @@
 //! (`contact::ROUNDING_FLOOR`, 8e−13).
 
 use crate::cheb::{Interpolation, N, nodes, poly};
+use crate::simd::with_avx2;
 use libm::erfc;
 use std::sync::OnceLock;
 
@@ -105,18 +106,14 @@ pub fn erf_and_gauss(x: f64) -> (f64, f64) {
 /// [`erf_and_gauss`] at every x ≥ 0 of `x`, into `erf` and `gauss`, to the last bit: run by run
 /// of consecutive points served by one branch (one table panel), so that the loop over a run
 /// has no branches and is vectorised. Fastest when x is monotone, as at a contact evaluation's
-/// nodes (G increases with q, x = p0/(2√G) decreases).
+/// nodes (G increases with q, x = p0/(2√G) decreases). AVX2 where the CPU has it (`crate::simd`).
 pub fn erf_and_gauss_many(x: &[f64], erf: &mut [f64], gauss_out: &mut [f64]) {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2, checked just above.
-        return unsafe { erf_and_gauss_many_avx2(x, erf, gauss_out) };
-    }
-    erf_and_gauss_many_in(x, erf, gauss_out);
+    with_avx2!(
+        erf_and_gauss_many_avx2(x, erf, gauss_out),
+        erf_and_gauss_many_in(x, erf, gauss_out)
+    )
 }
 
-/// [`erf_and_gauss_many`] compiled for AVX2 (four lanes instead of two; the same operations, so
-/// the same values to the last bit: no fused multiply-adds are formed).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn erf_and_gauss_many_avx2(x: &[f64], erf: &mut [f64], gauss_out: &mut [f64]) {

@@ -98,7 +98,7 @@ pub struct Bilayer {
 const QD_BULK: f64 = 700.0;
 
 mod table;
-pub use table::{KernelTable, Squared, X_FAR};
+pub use table::{KernelTable, Nodes, Squared, X_FAR};
 
 /// 1/(2k+3)! for k = 0..14: Taylor coefficients of (sinh y − y)/y³ in y².
 const SINH_COEF: [f64; 15] = {

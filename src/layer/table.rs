@@ -31,6 +31,7 @@
 use super::{Bilayer, QD_BULK};
 use crate::cheb::{Interpolation, N, poly};
 use crate::prec::TABLE_RTOL;
+use crate::simd::with_avx2;
 use crate::special::exp_nonpositive;
 
 /// Panel width in y = ln(qd) before any halving.
@@ -41,6 +42,16 @@ pub const MAX_HALVINGS: u32 = 3;
 pub const X_FAR: f64 = 40.0;
 /// The widest y-range a table may span (beyond it the exact kernels are cheaper than building).
 pub const MAX_SPAN: f64 = 120.0;
+
+/// Ascending quadrature nodes q (with u = ln q) at one film thickness d (with ln d): the batched
+/// kernels are evaluated at x = q d, y = u + ln d.
+#[derive(Debug, Clone, Copy)]
+pub struct Nodes<'a> {
+    pub q: &'a [f64],
+    pub u: &'a [f64],
+    pub d: f64,
+    pub ln_d: f64,
+}
 
 /// S⁻², f² and g² at one x = qd.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -238,28 +249,22 @@ impl KernelTable {
         ((y - self.y0) * self.inv_width).max(0.0)
     }
 
-    /// S⁻² at x = q d, y = u + ln d for ascending nodes (q, u = ln q), into `out`: the values
-    /// of [`k`](Self::k) to the last bit, with one polynomial per run of nodes in a panel so
-    /// that the loop over the run has no branches and is vectorised.
-    pub fn k_many(&self, q: &[f64], u: &[f64], d: f64, ln_d: f64, out: &mut [f64]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2, checked just above.
-            return unsafe { self.k_many_avx2(q, u, d, ln_d, out) };
-        }
-        self.k_many_in(q, u, d, ln_d, out);
+    /// S⁻² at x = q d, y = u + ln d for ascending nodes, into `out`: the values of
+    /// [`k`](Self::k) to the last bit, with one polynomial per run of nodes in a panel so that the
+    /// loop over the run has no branches and is vectorised (AVX2 where the CPU has it:
+    /// `crate::simd`).
+    pub fn k_many(&self, at: Nodes, out: &mut [f64]) {
+        with_avx2!(self.k_many_avx2(at, out), self.k_many_in(at, out))
     }
 
-    /// [`k_many`](Self::k_many) compiled for AVX2 (four lanes instead of two; the same
-    /// operations, so the same values to the last bit: no fused multiply-adds are formed).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn k_many_avx2(&self, q: &[f64], u: &[f64], d: f64, ln_d: f64, out: &mut [f64]) {
-        self.k_many_in(q, u, d, ln_d, out);
+    fn k_many_avx2(&self, at: Nodes, out: &mut [f64]) {
+        self.k_many_in(at, out);
     }
 
     #[inline(always)]
-    fn k_many_in(&self, q: &[f64], u: &[f64], d: f64, ln_d: f64, out: &mut [f64]) {
+    fn k_many_in(&self, Nodes { q, u, d, ln_d }: Nodes, out: &mut [f64]) {
         let near = q.partition_point(|&q| q * d <= X_FAR);
         let mut j = 0;
         while j < near {
@@ -276,49 +281,21 @@ impl KernelTable {
     /// f² and g² at x = q d, y = u + ln d for ascending nodes, into `f2` and `g2`: the values
     /// of [`interface`](Self::interface) to the last bit, run by run as in
     /// [`k_many`](Self::k_many), with the e^{−2x} factors formed first.
-    pub fn interface_many(
-        &self,
-        q: &[f64],
-        u: &[f64],
-        d: f64,
-        ln_d: f64,
-        f2: &mut [f64],
-        g2: &mut [f64],
-    ) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2, checked just above.
-            return unsafe { self.interface_many_avx2(q, u, d, ln_d, f2, g2) };
-        }
-        self.interface_many_in(q, u, d, ln_d, f2, g2);
+    pub fn interface_many(&self, at: Nodes, f2: &mut [f64], g2: &mut [f64]) {
+        with_avx2!(
+            self.interface_many_avx2(at, f2, g2),
+            self.interface_many_in(at, f2, g2)
+        )
     }
 
-    /// [`interface_many`](Self::interface_many) compiled for AVX2, as
-    /// [`k_many_avx2`](Self::k_many_avx2).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn interface_many_avx2(
-        &self,
-        q: &[f64],
-        u: &[f64],
-        d: f64,
-        ln_d: f64,
-        f2: &mut [f64],
-        g2: &mut [f64],
-    ) {
-        self.interface_many_in(q, u, d, ln_d, f2, g2);
+    fn interface_many_avx2(&self, at: Nodes, f2: &mut [f64], g2: &mut [f64]) {
+        self.interface_many_in(at, f2, g2);
     }
 
     #[inline(always)]
-    fn interface_many_in(
-        &self,
-        q: &[f64],
-        u: &[f64],
-        d: f64,
-        ln_d: f64,
-        f2: &mut [f64],
-        g2: &mut [f64],
-    ) {
+    fn interface_many_in(&self, Nodes { q, u, d, ln_d }: Nodes, f2: &mut [f64], g2: &mut [f64]) {
         let near = q.partition_point(|&q| q * d <= X_FAR);
         // Nodes in direct panels first: no e^{−2x}.
         let direct = self.direct as f64;
@@ -399,10 +376,16 @@ mod tests {
         let u: Vec<f64> = q.iter().map(|q| q.ln()).collect();
         let mut v = [(); 6].map(|_| vec![0.0; q.len()]);
         let [k, f, g, kb, fb, gb] = &mut v;
-        table.k_many(&q, &u, d, d.ln(), k);
-        table.k_many_in(&q, &u, d, d.ln(), kb);
-        table.interface_many(&q, &u, d, d.ln(), f, g);
-        table.interface_many_in(&q, &u, d, d.ln(), fb, gb);
+        let at = Nodes {
+            q: &q,
+            u: &u,
+            d,
+            ln_d: d.ln(),
+        };
+        table.k_many(at, k);
+        table.k_many_in(at, kb);
+        table.interface_many(at, f, g);
+        table.interface_many_in(at, fb, gb);
         for (a, b) in [(&*k, &*kb), (&*f, &*fb), (&*g, &*gb)] {
             assert!(a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits()));
         }

@@ -2,7 +2,7 @@
 //! extreme grid of materials and the whole q·d range including the far field up to 700.
 
 use coatcheck::contact::{Engine, Request};
-use coatcheck::layer::{Bilayer, Elastic, KernelTable, Stack};
+use coatcheck::layer::{Bilayer, Elastic, KernelTable, Nodes, Stack};
 use coatcheck::prec::{Settings, TABLE_RTOL};
 use coatcheck::psd::Spectrum;
 
@@ -75,8 +75,14 @@ fn batched_kernels_equal_single_points() {
     for layers in pairs() {
         let table = KernelTable::new(layers, 1e-9, 1e4).expect("the kernels are resolved");
         let (mut k, mut f2, mut g2) = (vec![0.0; 3000], vec![0.0; 3000], vec![0.0; 3000]);
-        table.k_many(&q, &u, d, d.ln(), &mut k);
-        table.interface_many(&q, &u, d, d.ln(), &mut f2, &mut g2);
+        let at = Nodes {
+            q: &q,
+            u: &u,
+            d,
+            ln_d: d.ln(),
+        };
+        table.k_many(at, &mut k);
+        table.interface_many(at, &mut f2, &mut g2);
         for j in 0..q.len() {
             let (x, y) = (q[j] * d, u[j] + d.ln());
             assert_eq!(k[j].to_bits(), table.k(x, y).to_bits(), "S^-2 at x = {x:e}");
