@@ -512,20 +512,6 @@ struct GlPanel {
     atc: [usize; GL_MAX - 1],
 }
 
-impl GlPanel {
-    /// The panel's 2n − 1 nodes (q, u) in ascending order (the rest of the array unused).
-    fn sorted(&self) -> [(f64, f64); 2 * GL_MAX - 1] {
-        let mut out = [(0.0, 0.0); 2 * GL_MAX - 1];
-        for k in 0..self.n {
-            out[self.at[k]] = (self.q[k], self.u[k]);
-        }
-        for k in 0..self.n - 1 {
-            out[self.atc[k]] = (self.qc[k], self.uc[k]);
-        }
-        out
-    }
-}
-
 /// The interface quadrature near q_L, where P(G(u)) ∝ (u − u_L)^{-1/2} once G ≫ p0²: panels
 /// shrinking towards q_L (each as wide as its distance to q_L, split at the spectrum's knots),
 /// n-point Gauss–Legendre on each (n = 7 next to q_L at rtol 1e-8, fewer further out: [`graded_nodes`];
@@ -824,6 +810,18 @@ impl Graded {
 }
 
 impl GlPanel {
+    /// The panel's 2n − 1 nodes (q, u) in ascending order (the rest of the array unused).
+    fn sorted(&self) -> [(f64, f64); 2 * GL_MAX - 1] {
+        let mut out = [(0.0, 0.0); 2 * GL_MAX - 1];
+        for k in 0..self.n {
+            out[self.at[k]] = (self.q[k], self.u[k]);
+        }
+        for k in 0..self.n - 1 {
+            out[self.atc[k]] = (self.qc[k], self.uc[k]);
+        }
+        out
+    }
+
     /// x = p0/(2√G) at the panel's 2n − 1 nodes (ascending, into `x`) from S⁻² there (`k`) and
     /// G before the panel (`near.g_raw`, raw: without the factor cg); then the panel's n-node
     /// integral of S⁻² added to G and its difference to the companion's to G's error.
