@@ -518,6 +518,12 @@ struct GlPanel {
 /// error: the difference to n − 1 points), and the innermost
 /// [u_L, u_L + 1e-11] in closed form, ∫_0^{G} P dG being known exactly.
 ///
+/// Within the first base panel (no knot there) the panels are linear in s = √(u − u_L) and
+/// halve in s, not in u: the integrand W S⁻² F² P is then ∝ s·(u − u_L)^{-1/2}, bounded, and
+/// still analytic but at s = 0, so a panel as wide as its distance from q_L in s converges as
+/// fast as one so in u, and half as many of them span the same range (at d = 1 µm on the
+/// 1000-point benchmark PSD, 679 nodes instead of 848 in the region).
+///
 /// Where G stays below (p0/2)²/36 the contact probability is erf(≥ 6) = 1 in f64 and the
 /// integrand is smooth: the innermost panels up to there are replaced by one 6-point panel from
 /// q_L (`merged`, chosen per evaluation from a bound on G). Where G stays below (p0/2)²/3 over the
@@ -598,12 +604,20 @@ impl Graded {
         } else {
             u_end - u0
         };
-        // Offsets from u_L of the panel ends: halving steps, plus every base-grid end (knots).
+        // Offsets from u_L of the panel ends: halving steps down to the first base panel's end,
+        // quartering steps (halving in s = √(u − u_L)) within it, plus every base-grid end
+        // (knots).
+        let first_end = grid.width.first().copied().unwrap_or(span).min(span);
         let mut ends = vec![];
         let mut delta = span;
-        while delta > INNER_WIDTH {
+        while delta > first_end {
             ends.push(delta);
             delta *= 0.5;
+        }
+        delta = first_end;
+        while delta > INNER_WIDTH {
+            ends.push(delta);
+            delta *= 0.25;
         }
         ends.push(delta);
         ends.extend(
@@ -645,16 +659,22 @@ impl Graded {
             })
             .collect();
         let w_of = |q: f64| grid.w_at_u(spectrum, q.ln());
-        let gl_panel = |a: f64, b: f64, n: usize| {
-            let half = 0.5 * (b - a);
-            let at = |x: f64| q_l * (a + half * (x + 1.0)).exp();
+        // An n-node panel in x ∈ [−1, 1] with u − u_L = r(x) by `map` (x ↦ (r, dr/dx)): its
+        // weights and partial-integral matrices carry dr/dx·W at the nodes.
+        let mapped_panel = |map: &dyn Fn(f64) -> (f64, f64), n: usize| {
+            let at = |x: f64| {
+                let (r, jac) = map(x);
+                let q = q_l * r.exp();
+                (q, jac * w_of(q))
+            };
             let (x, gw) = (&rules[n].0, &rules[n].1);
             let (xc, gwc) = (&rules[n - 1].0, &rules[n - 1].1);
-            let q: [f64; GL_MAX] = std::array::from_fn(|k| x.get(k).map_or(q_l, |&x| at(x)));
-            let qc: [f64; GL_MAX - 1] = std::array::from_fn(|k| xc.get(k).map_or(q_l, |&x| at(x)));
-            let wq: [f64; GL_MAX] = std::array::from_fn(|k| if k < n { w_of(q[k]) } else { 0.0 });
-            let wqc: [f64; GL_MAX - 1] =
-                std::array::from_fn(|k| if k < n - 1 { w_of(qc[k]) } else { 0.0 });
+            let main: [(f64, f64); GL_MAX] =
+                std::array::from_fn(|k| x.get(k).map_or((q_l, 0.0), |&x| at(x)));
+            let comp: [(f64, f64); GL_MAX - 1] =
+                std::array::from_fn(|k| xc.get(k).map_or((q_l, 0.0), |&x| at(x)));
+            let (q, wq) = (main.map(|m| m.0), main.map(|m| m.1));
+            let (qc, wqc) = (comp.map(|m| m.0), comp.map(|m| m.1));
             // Merge the two ascending node sets.
             let (mut at, mut atc) = ([0; GL_MAX], [0; GL_MAX - 1]);
             let (mut i, mut k) = (0, 0);
@@ -673,30 +693,49 @@ impl Graded {
                 atc,
                 q,
                 u: q.map(f64::ln),
-                w: std::array::from_fn(|k| gw.get(k).map_or(0.0, |g| g * half * wq[k])),
-                b: std::array::from_fn(|j| std::array::from_fn(|k| bn[n][j][k] * half * wq[k])),
+                w: std::array::from_fn(|k| gw.get(k).map_or(0.0, |g| g * wq[k])),
+                b: std::array::from_fn(|j| std::array::from_fn(|k| bn[n][j][k] * wq[k])),
                 qc,
                 uc: qc.map(f64::ln),
-                wc: std::array::from_fn(|k| gwc.get(k).map_or(0.0, |g| g * half * wqc[k])),
-                bc: std::array::from_fn(|j| std::array::from_fn(|k| bcn[n][j][k] * half * wq[k])),
+                wc: std::array::from_fn(|k| gwc.get(k).map_or(0.0, |g| g * wqc[k])),
+                bc: std::array::from_fn(|j| std::array::from_fn(|k| bcn[n][j][k] * wq[k])),
             }
+        };
+        // Linear in u over [a, b].
+        let gl_panel = |a: f64, b: f64, n: usize| {
+            let half = 0.5 * (b - a);
+            mapped_panel(&|x| (a + half * (x + 1.0), half), n)
+        };
+        // Linear in s = √(u − u_L) over [√a, √b].
+        let s_panel = |a: f64, b: f64, n: usize| {
+            let (sa, half) = (a.sqrt(), 0.5 * (b.sqrt() - a.sqrt()));
+            mapped_panel(
+                &|x| {
+                    let s = sa + half * (x + 1.0);
+                    (s * s, 2.0 * s * half)
+                },
+                n,
+            )
         };
         // The halving sequence's panels (ρ = 1, or more where a knot splits them) and the
         // knot-split panels further out: as many nodes as their distance from q_L needs.
         let panels: Vec<GlPanel> = ends
             .windows(2)
             .map(|p| {
-                let rho = p[0] / (p[1] - p[0]);
                 // W's log-slope on the panel's base-grid panel, plus 8 for the kernels.
                 let base = grid
                     .left
                     .partition_point(|&l| l <= u0 + p[0])
                     .saturating_sub(1);
                 let z = (grid.beta[base].abs() + 8.0) * (p[1] - p[0]);
-                gl_panel(p[0], p[1], graded_nodes(rho, z, rtol))
+                if p[1] <= first_end {
+                    let (sa, sb) = (p[0].sqrt(), p[1].sqrt());
+                    s_panel(p[0], p[1], graded_nodes(sa / (sb - sa), z, rtol))
+                } else {
+                    gl_panel(p[0], p[1], graded_nodes(p[0] / (p[1] - p[0]), z, rtol))
+                }
             })
             .collect();
-        let first_end = grid.width.first().copied().unwrap_or(span).min(span);
         let merged = ends[1..]
             .iter()
             .take_while(|&&r| r <= first_end)
