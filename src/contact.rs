@@ -24,6 +24,12 @@
 //! when no table resolves them), two to four times cheaper than the stable forms themselves,
 //! and evaluated at all nodes in batches (`KernelTable::k_many`, `interface_many`), as is P
 //! (`special::erf_and_gauss_many`): the per-node loops have no branches and are vectorised.
+//! Linear P: P decreases with q (G increases). From the first panel where x = p0/(2√G) ≤ 1 and
+//! Taylor's remainder (3/4)|dP/dG|(G1 − G)²/G is below rtol/100 of A, P is taken as
+//! A + |dP/dG|(G1)·(G1 − G) with that remainder added to its error ([`linear_probability`]): no
+//! erf and no analytic derivatives there. For thin films, where G saturates near q_L, that is
+//! most of the range (d = 1 µm on the benchmark PSD: 510 of the 761 panels before the cut; none
+//! at 5 µm and above, where P still falls towards the cut).
 //! Interface tail: above q·d = 20 f e^x and g e^x are linear in x to 1e−15 (the far field of
 //! `layer::KernelTable`: the stable forms' e^{−2x} terms are below x²e^{−2x} < 2e−15 there), and
 //! (a + bx)e^{−x} with a/b ≥ 0 decreases for x > 1: f² and g² decrease. The interface integrals
@@ -565,6 +571,9 @@ const NEAR_NONE: Near = Near {
     tau: (0.0, 0.0),
     evaluations: 0,
 };
+
+/// The share of rtol (relative to A) by which P may differ from its linear model ("Linear P").
+const FLAT_SHARE: f64 = 0.01;
 
 /// Where G stays below (p0/2)² divided by this over the graded region, it is not used.
 const GRADED_SKIP: f64 = 3.0;
@@ -1141,8 +1150,6 @@ impl Engine {
             let grid = self.grid(level);
             let graded = request.interface().then(|| self.graded(level));
             evaluations += grid.q.len();
-            // The interface tail is cut where its bound is below rtol/1000 of the rest.
-            let tol = 1e-3 * self.settings.rtol;
             let mut c = SCRATCH.with_borrow_mut(|s| {
                 evaluate_on(
                     grid,
@@ -1152,7 +1159,7 @@ impl Engine {
                     p0,
                     request,
                     evaluations,
-                    tol,
+                    self.settings.rtol,
                     s,
                 )
             })?;
@@ -1358,8 +1365,9 @@ fn top_variance_half(p0: f64, g1: f64) -> f64 {
     g1 * erf(u) + 2.0 * a * a / PI.sqrt() * ((-u * u).exp() / u - PI.sqrt() * erfc(u))
 }
 
-/// One evaluation on one grid. The interface integrals stop where their tail's bound is below
-/// `tol` times the rest (module doc, "Interface tail").
+/// One evaluation on one grid, for the relative tolerance `rtol`. The interface integrals stop
+/// where their tail's bound is below rtol/1000 of the rest (module doc, "Interface tail"), and
+/// take P as linear in G where that is within [`FLAT_SHARE`]·rtol of A ("Linear P").
 #[allow(clippy::too_many_arguments)]
 fn evaluate_on(
     grid: &Grid,
@@ -1369,9 +1377,10 @@ fn evaluate_on(
     p0: f64,
     req: Request,
     evaluations: usize,
-    tol: f64,
+    rtol: f64,
     scratch: &mut Scratch,
 ) -> Result<Contact, Error> {
+    let tol = 1e-3 * rtol;
     let layers = &stack.layers;
     let d = stack.thickness;
     let e0 = layers.film.e_star();
@@ -1513,9 +1522,8 @@ fn evaluate_on(
         evaluate((2 * to + 5).min(n), &mut done, f2, g2);
         n_fg = done;
         // Then the two-node panels. First G at every node (forward pass: running sum plus the
-        // panel's partial integral), then P and its slope at all of them in one batch, then the
-        // error of P from the error of G. (Nodes and panels up to the cut.)
-        let nodes = 2 * from..2 * to;
+        // panel's partial integral), then, up to where P is flat, P and its slope at all of them
+        // in one batch, and the error of P from the error of G. (Nodes and panels up to the cut.)
         sized(p_node, 2 * to, 0.0);
         sized(g_node, 2 * to, 0.0);
         sized(x_node, 2 * to, 0.0);
@@ -1541,6 +1549,18 @@ fn evaluate_on(
             g_left += grid.w[j0] * f[j0] + grid.w[j1] * f[j1];
             g_left_err += g_err;
         }
+        // From panel `flat` on, P is linear in G (module doc, "Linear P").
+        let (flat, linear) = linear_probability(
+            p0,
+            g1,
+            area.value,
+            FLAT_SHARE * rtol,
+            (from, to),
+            g_node,
+            dp_cum,
+            dp_part,
+        );
+        let nodes = 2 * from..2 * flat;
         for (x, &g) in x_node[nodes.clone()].iter_mut().zip(&g_node[nodes.clone()]) {
             *x = probability_argument(p0, g);
         }
@@ -1556,14 +1576,35 @@ fn evaluate_on(
             dp_cum[j] *= slope;
             dp_part[j] *= slope;
         }
+        if let Some((s1, remainder)) = linear {
+            // P = A + s₁(G1 − G) there, its error from G's as above, plus the model's.
+            for j in 2 * flat..2 * to {
+                p_node[j] = area.value + s1 * (g1.value - g_node[j]);
+                dp_cum[j] = s1 * dp_cum[j] + remainder;
+                dp_part[j] *= s1;
+            }
+        }
         let inv_a2 = 4.0 / (p0 * p0);
+        let s1 = linear.map_or(0.0, |l| l.0);
         for (p, der) in p_der.iter_mut().enumerate().take(to).skip(from) {
             let (j0, j1) = (2 * p, 2 * p + 1);
             // G' = cg W K ρ at the node, growing locally like e^{λu}: λ = d ln W/du + d ln(Kρ)/du
             // across the panel's two nodes.
             let gp = cg * grid.w_at[j0] * f[j0];
             let lam = grid.beta[p] + ln_ratio(f[j1], f[j0]) * grid.inv_gap[p];
-            *der = probability_derivatives(x_node[j0], inv_a2, gauss[j0], gp, lam, p_node[j0]);
+            *der = if p < flat {
+                probability_derivatives(x_node[j0], inv_a2, gauss[j0], gp, lam, p_node[j0])
+            } else {
+                // P' = −s₁G', G^{(k)} = λ^{k−1}G'.
+                let d1 = -s1 * gp;
+                [
+                    p_node[j0],
+                    d1,
+                    d1 * lam,
+                    d1 * lam * lam,
+                    d1 * lam * lam * lam,
+                ]
+            };
         }
         // Beyond the last panel P ≤ 1 and F² ≤ its value at the first node left out (f², g²
         // decrease for q·d ≥ X_CUT), so the tail is at most F²(that node)·Σ w ρ K.
@@ -1630,6 +1671,53 @@ fn evaluate_on(
             0
         },
     })
+}
+
+/// Where P is linear in G (module doc, "Linear P"): the first panel p in [from, to) at whose
+/// first node x = p0/(2√G) ≤ 1 and the remainder bound (3/4)|dP/dG|(G_p)·(G1 − G_p + e)²/G_p
+/// is at most `share`·A, e the errors of G1 and G_p (`g_node`: G at the nodes; `dp_cum`,
+/// `dp_part`: G's cumulative and within-panel errors there, before they are turned into P's).
+/// Beyond p, P(G) = A + s₁(G1 − G) (s₁ = |dP/dG| at G1) within that bound: Taylor's remainder
+/// ½|P''|(G1 − G)², with P'' = −|P'|(x² − 3/2)/G, |x² − 3/2| ≤ 3/2 for x ≤ 1, and |P'| and 1/G
+/// decreasing with G. Returns p (`to` if there is none) and, if there is one, (s₁, the bound).
+/// Found by bisection (the bound decreases with p but for the slowly growing errors; the panel
+/// found is checked).
+#[allow(clippy::too_many_arguments)]
+fn linear_probability(
+    p0: f64,
+    g1: Estimate,
+    area: f64,
+    share: f64,
+    (from, to): (usize, usize),
+    g_node: &[f64],
+    dp_cum: &[f64],
+    dp_part: &[f64],
+) -> (usize, Option<(f64, f64)>) {
+    let bound = |p: usize| {
+        let j = 2 * p;
+        let g = g_node[j];
+        if probability_argument(p0, g) > 1.0 {
+            return None;
+        }
+        let slope = probability_and_slope(p0, g).1;
+        let errors = g1.err + dp_cum[j] + ERR_SAFETY * dp_part[j].abs();
+        let span = (g1.value - g).max(0.0) + errors;
+        let remainder = 0.75 * slope * span * span / g;
+        (remainder <= share * area).then_some(remainder)
+    };
+    let (mut lo, mut hi) = (from, to);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if bound(mid).is_some() {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    match (lo < to).then(|| bound(lo)).flatten() {
+        Some(remainder) => (lo, Some((probability_and_slope(p0, g1.value).1, remainder))),
+        None => (to, None),
+    }
 }
 
 /// √v with the error of v propagated (d√v = dv / (2√v)), bounded by √dv near v = 0.
@@ -1788,6 +1876,58 @@ mod tests {
             let want = u.exp().powi(4) * spectrum.c(u.exp());
             let got = grid.w_at_u(&spectrum, u);
             assert!((got / want - 1.0).abs() < 1e-12, "u = {u}: {got} vs {want}");
+        }
+    }
+    /// P linear in G: wherever `linear_probability` takes P as A + s₁(G1 − G), libm's
+    /// erf(p0/(2√G)) is within its remainder bound, and the bound within the share asked for;
+    /// the panel before the one it returns fails its condition (it is the first). G at the
+    /// panels' first nodes approaches G1 geometrically from G1/4 for contact areas A from 1e-6
+    /// to 0.6 (x at G1 from 1e-6 to 0.6), with and without G errors.
+    #[test]
+    fn linear_probability_bounds_p() {
+        let p0: f64 = 1e5;
+        for x1 in [1e-6, 1e-3, 0.1, 0.477, 0.6] {
+            let g1 = (0.5 * p0 / x1).powi(2);
+            let area = erf(x1);
+            for (g_err, share) in [(0.0, 1e-10), (1e-13 * g1, 1e-10), (0.0, 1e-14)] {
+                let panels = 400;
+                let mut g_node = vec![0.0; 2 * panels];
+                for p in 0..panels {
+                    // 1 − G/G1 from 3/4 down to 1e-12 geometrically.
+                    let t = p as f64 / (panels - 1) as f64;
+                    let gap = 0.75f64.ln() * (1.0 - t) + 1e-12f64.ln() * t;
+                    g_node[2 * p] = g1 * (1.0 - gap.exp());
+                    g_node[2 * p + 1] = g_node[2 * p];
+                }
+                let cum = vec![g_err; 2 * panels];
+                let part = vec![0.0; 2 * panels];
+                let est = Estimate::new(g1, g_err, Termination::Converged);
+                let (flat, linear) =
+                    linear_probability(p0, est, area, share, (0, panels), &g_node, &cum, &part);
+                let Some((s1, remainder)) = linear else {
+                    panic!("x1 = {x1}: no linear region");
+                };
+                assert!(remainder <= share * area);
+                assert!(flat > 0, "x1 = {x1}: linear from the first panel");
+                let x_prev = 0.5 * p0 / g_node[2 * (flat - 1)].sqrt();
+                let prev = probability_and_slope(p0, g_node[2 * (flat - 1)]).1
+                    * (g1 - g_node[2 * (flat - 1)] + 2.0 * g_err).powi(2)
+                    * 0.75
+                    / g_node[2 * (flat - 1)];
+                assert!(
+                    x_prev > 1.0 || prev > share * area,
+                    "x1 = {x1}: not the first"
+                );
+                for &g in &g_node[2 * flat..] {
+                    let exact = erf(0.5 * p0 / g.sqrt());
+                    let model = area + s1 * (g1 - g);
+                    assert!(
+                        (exact - model).abs() <= remainder + 4.0 * EPS * area,
+                        "x1 = {x1}, G/G1 = {}: {exact} vs {model}, bound {remainder}",
+                        g / g1
+                    );
+                }
+            }
         }
     }
 }
