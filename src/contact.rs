@@ -116,6 +116,8 @@ struct Grid {
     w: Vec<f64>,
     /// ρ_j = W(u_j)/W_ref(u_j).
     rho: Vec<f64>,
+    /// Whether every ρ_j is 1 (piecewise power-law spectra).
+    unit_rho: bool,
     /// W(u_j) = q_j⁴ C(q_j), for dG/du at the nodes.
     w_at: Vec<f64>,
     /// Per panel: d ln W_ref / du.
@@ -208,6 +210,7 @@ impl Grid {
             u: Vec::with_capacity(nodes),
             w: Vec::with_capacity(nodes),
             rho: Vec::with_capacity(nodes),
+            unit_rho: false,
             w_at: Vec::with_capacity(nodes),
             beta: Vec::with_capacity(panels),
             err4: Vec::with_capacity(panels),
@@ -324,6 +327,7 @@ impl Grid {
                 .collect()
         });
         g.bare = g.bare_integral();
+        g.unit_rho = g.rho.iter().all(|&r| r == 1.0);
         g
     }
 
@@ -1237,7 +1241,6 @@ fn mark_not_reached(c: &mut Contact, rtol: f64) {
 /// ~9 % of an evaluation's time.
 #[derive(Default)]
 struct Scratch {
-    kern: Vec<f64>,
     f2: Vec<f64>,
     g2: Vec<f64>,
     f: Vec<f64>,
@@ -1388,7 +1391,6 @@ fn evaluate_on(
     let n = grid.q.len();
     let need_fg = req.interface();
     let Scratch {
-        kern,
         f2,
         g2,
         f,
@@ -1405,15 +1407,19 @@ fn evaluate_on(
         gauss,
         near_buf,
     } = scratch;
-    kernels.k_many(&grid.q, &grid.u, sized(kern, n, 0.0));
-    if let Some(j) = kern.iter().position(|k| !k.is_finite()) {
+    // f = ρ S⁻² (S⁻² alone where ρ = 1 throughout).
+    kernels.k_many(&grid.q, &grid.u, sized(f, n, 0.0));
+    if let Some(j) = f.iter().position(|k| !k.is_finite()) {
         return Err(Error::Numerical {
             what: "layer response",
             detail: format!("S(qd) = 0 at qd = {:e}", grid.q[j] * d),
         });
     }
-    f.clear();
-    f.extend(kern.iter().zip(&grid.rho).map(|(k, r)| k * r));
+    if !grid.unit_rho {
+        for (f, &r) in f.iter_mut().zip(&grid.rho) {
+            *f *= r;
+        }
+    }
     grid.newton(f, 0, n, f_dd);
     grid.panel_errors(&f_dd[3], g_errs);
     let (g_sum, g_err) = grid.sum_with_errors(f, g_errs);
@@ -1425,7 +1431,7 @@ fn evaluate_on(
 
     // Low-octave share: G at 2 q_L over G1.
     let low: f64 = (0..2 * grid.low_octave_panels)
-        .map(|j| grid.w[j] * grid.rho[j] * kern[j])
+        .map(|j| grid.w[j] * f[j])
         .sum();
     let low_octave_share = if g_sum > 0.0 {
         (low / g_sum).min(1.0)
