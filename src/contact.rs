@@ -26,7 +26,7 @@
 //! (`special::erf_and_gauss_many`): the per-node loops have no branches and are vectorised.
 //! Linear P: P decreases with q (G increases). From the first panel where x = p0/(2√G) ≤ 1 and
 //! Taylor's remainder (3/4)|dP/dG|(G1 − G)²/G is below rtol/100 of A, P is taken as
-//! A + |dP/dG|(G1)·(G1 − G) with that remainder added to its error ([`linear_probability`]): no
+//! A + |dP/dG|(G1)·(G1 − G) with that remainder added to its error (`linear_probability`): no
 //! erf and no analytic derivatives there. For thin films, where G saturates near q_L, that is
 //! most of the range (d = 1 µm on the benchmark PSD: 510 of the 761 panels before the cut; none
 //! at 5 µm and above, where P still falls towards the cut).
