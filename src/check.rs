@@ -46,8 +46,9 @@
 //!    utilisation is at least c·u(d*)/√2 (0.177, 0.354): a failing point (u > 1) inside would
 //!    put an end above the threshold (0.15, 0.3); test `few_mode_shear_bands_match_a_dense_scan`
 //!    checks this on random spectra. The substrate-yield values go through |f|, monotone in qd,
-//!    and through S (in P and G), which has at most one turn in qd over the same pairs (checked
-//!    when the steps were chosen, not by a test);
+//!    and through S (in P and G), which has at most one turn in qd (test
+//!    `s_turns_at_most_once_and_f_never_rises`: 88 pairs from E0/E1 = 1e-8 to 1e8, ν 0 to 0.5;
+//!    22 of them turn once, none twice);
 //! 3. guards against a failing band narrower than the step: at every sampled local maximum of
 //!    u above [`PEAK_GUARD`] it maximises u between the neighbouring samples by successive
 //!    parabolic interpolation (golden-section steps where the parabola does not help) and treats

@@ -170,3 +170,50 @@ proptest! {
         prop_assert!(r.f <= 2.0 * (1.0 + qd) * (-qd).exp() * (1.0 + 1e-12));
     }
 }
+
+/// The shape the d_min search relies on (`check` module doc, its step widening for
+/// substrate-yield): over the extreme grid of material pairs (E0/E1 1e-8..1e8 both ways, ν from 0
+/// to exactly 0.5), S(qd) has at most one turn and |f(qd)| never rises, on 2000 points per
+/// decade from qd = 1e-8 to 1e3 (S = 1 and f = 0 beyond the bulk limit). Changes within
+/// 1e-12 relative (rounding, and the flat limits at both ends) are not counted as a direction.
+#[test]
+fn s_turns_at_most_once_and_f_never_rises() {
+    for ratio in [1e-8, 1e-6, 1e-4, 1e-2, 0.3, 1.0, 3.0, 1e2, 1e4, 1e6, 1e8] {
+        for (nu0, nu1) in [
+            (0.5, 0.5),
+            (0.5, 0.3),
+            (0.5, 0.0),
+            (0.0, 0.5),
+            (0.49985, 0.0),
+            (0.3, 0.3),
+            (0.0, 0.0),
+            (0.25, 0.49985),
+        ] {
+            let layers = pair(ratio, nu0, nu1);
+            let (mut turns, mut dir) = (0, 0i8);
+            let mut prev = layers.response(1e-8);
+            for i in 1..=22_000 {
+                let r = layers.response(10f64.powf(-8.0 + f64::from(i) / 2000.0));
+                let ds = r.s - prev.s;
+                if ds.abs() > 1e-12 * r.s.abs().max(prev.s.abs()) {
+                    let d = if ds > 0.0 { 1 } else { -1 };
+                    if dir != 0 && d != dir {
+                        turns += 1;
+                    }
+                    dir = d;
+                }
+                assert!(
+                    r.f.abs() <= prev.f.abs() * (1.0 + 1e-12) + 1e-300,
+                    "E0/E1 = {ratio}, nu {nu0}/{nu1}: |f| rises at step {i}: {} -> {}",
+                    prev.f,
+                    r.f
+                );
+                prev = r;
+            }
+            assert!(
+                turns <= 1,
+                "E0/E1 = {ratio}, nu {nu0}/{nu1}: S turns {turns} times"
+            );
+        }
+    }
+}
