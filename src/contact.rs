@@ -409,38 +409,13 @@ impl Grid {
     }
 
     /// Σ_j w_j f_j over all panels for f = ρψ, with the panel error estimates already made and
-    /// the summation's rounding. Four running sums each (nodes, panel errors) instead of one:
-    /// four chains of additions that overlap.
+    /// the summation's rounding ([`sum4`] for both sums). Every term is positive (Gauss weights
+    /// for a positive weight function, ρ and S⁻² positive), so the sum is also Σ|w_j f_j|.
     fn sum_with_errors(&self, f: &[f64], errs: &[f64]) -> (f64, f64) {
-        let (mut sum, mut abs) = ([0.0; 4], [0.0; 4]);
-        let (w4, f4) = (self.w.chunks_exact(4), f[..self.w.len()].chunks_exact(4));
-        let (w_rest, f_rest) = (w4.remainder(), f4.remainder());
-        for (w, f) in w4.zip(f4) {
-            for k in 0..4 {
-                let v = w[k] * f[k];
-                sum[k] += v;
-                abs[k] += v.abs();
-            }
-        }
-        for (k, (w, f)) in w_rest.iter().zip(f_rest).enumerate() {
-            sum[k] += w * f;
-            abs[k] += (w * f).abs();
-        }
-        let mut err = [0.0; 4];
-        let e4 = errs.chunks_exact(4);
-        for (k, e) in e4.remainder().iter().enumerate() {
-            err[k] += e;
-        }
-        for e in e4 {
-            for k in 0..4 {
-                err[k] += e[k];
-            }
-        }
-        let total = |a: [f64; 4]| (a[0] + a[1]) + (a[2] + a[3]);
-        (
-            total(sum),
-            total(err) + 8.0 * EPS * total(abs) * (self.q.len() as f64).sqrt(),
-        )
+        let (w, f) = (&self.w[..], &f[..self.w.len()]);
+        let sum = sum4(w.len(), |j| w[j] * f[j]);
+        let err = sum4(errs.len(), |p| errs[p]);
+        (sum, err + 8.0 * EPS * sum * (self.q.len() as f64).sqrt())
     }
 
     /// ∫W du (Σ_j w_j ρ_j) with its error estimate, for E_eff.
@@ -501,6 +476,23 @@ impl Grid {
         }
         (v, gauss + dp)
     }
+}
+
+/// Σ_{j < n} term(j) in four running sums (term j into sum j mod 4), added pairwise at the end:
+/// four chains of additions that overlap instead of one.
+#[inline(always)]
+fn sum4(n: usize, term: impl Fn(usize) -> f64) -> f64 {
+    let mut s = [0.0; 4];
+    let full = n - n % 4;
+    for j in (0..full).step_by(4) {
+        for (k, s) in s.iter_mut().enumerate() {
+            *s += term(j + k);
+        }
+    }
+    for (s, j) in s.iter_mut().zip(full..n) {
+        *s += term(j);
+    }
+    (s[0] + s[1]) + (s[2] + s[3])
 }
 
 /// Relative error of the n-point Gauss–Legendre rule on ∫ x^{-1/2} dx over a panel at ρ times
