@@ -44,6 +44,19 @@ use std::f64::consts::PI;
 /// Widest panel (in u) integrated with one pair of Gauss–Legendre rules.
 const PANEL: f64 = 0.25;
 
+/// acosh(e^t) for t ≥ 0 without forming e^t: t + ln(1 + √(1 − e^{−2t})). e^t overflows above
+/// t ≈ 709 (points more than 308 decades apart, which the reader accepts), and acosh(∞) = ∞
+/// made a panel count of usize::MAX: the conversion never ended.
+fn acosh_exp(t: f64) -> f64 {
+    t + (-(-2.0 * t).exp_m1()).sqrt().ln_1p()
+}
+
+/// ln cosh u for u ≥ 0 without forming cosh u (which overflows above u ≈ 710):
+/// u − ln 2 + ln(1 + e^{−2u}).
+fn ln_cosh(u: f64) -> f64 {
+    u - std::f64::consts::LN_2 + (-2.0 * u).exp().ln_1p()
+}
+
 /// How a 1D PSD is turned into the isotropic 2D PSD.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -98,15 +111,16 @@ pub fn c1d_at(c: impl Fn(f64) -> f64, knots: &[f64], q: f64) -> Estimate {
     if !(q > 0.0 && q < hi) {
         return Estimate::exact(0.0);
     }
-    let mut breaks = vec![(lo.max(q) / q).acosh()];
+    let lnq = q.ln();
+    let mut breaks = vec![acosh_exp(lo.max(q).ln() - lnq)];
     breaks.extend(
         knots
             .iter()
             .filter(|&&k| k > lo.max(q))
-            .map(|&k| (k / q).acosh()),
+            .map(|&k| acosh_exp(k.ln() - lnq)),
     );
     let (v, d, a) = integrate(&breaks, PANEL, |u| {
-        let k = q * u.cosh();
+        let k = (lnq + ln_cosh(u)).exp();
         k * c(k)
     });
     estimate(4.0 * v, 4.0 * d, 4.0 * a, breaks.len())
@@ -331,13 +345,10 @@ fn inverse_at(
             a += s10.abs();
             continue;
         }
-        let breaks = [
-            (x[i].max(lnk) - lnk).exp().acosh(),
-            (x[i + 1] - lnk).exp().acosh(),
-        ];
+        let breaks = [acosh_exp(x[i].max(lnk) - lnk), acosh_exp(x[i + 1] - lnk)];
         // dC1D/dq = C1D(q) P'(ln q)/q, written in u with ln q = ln k + ln cosh u.
         let (vi, di, ai) = integrate(&breaks, PANEL, |u| {
-            let lnq = lnk + u.cosh().ln();
+            let lnq = lnk + ln_cosh(u);
             let (p, dp) = hermite(x, y, m, i, lnq);
             (p - lnq).exp() * dp
         });
@@ -347,11 +358,11 @@ fn inverse_at(
     }
     // Tail: the integrand falls like e^{(s−1)u}; 42 e-folds leave < 1e-18 of it.
     let (xn, yn) = (x[n - 1], y[n - 1]);
-    let u0 = (xn - lnk).exp().acosh();
+    let u0 = acosh_exp(xn - lnk);
     let width = PANEL.min(1.0 / (1.0 - s_tail));
     let u1 = u0 + 42.0 / (1.0 - s_tail);
     let (vt, dt, at) = integrate(&[u0, u1], width, |u| {
-        let lnq = lnk + u.cosh().ln();
+        let lnq = lnk + ln_cosh(u);
         s_tail * (yn + s_tail * (lnq - xn) - lnq).exp()
     });
     v += vt;
@@ -360,4 +371,33 @@ fn inverse_at(
     panels += 1;
     let scale = 1.0 / (2.0 * PI);
     estimate(-scale * v, scale * d, scale * a, panels)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// acosh(e^t) and ln cosh u agree with the direct forms where those do not overflow (the
+    /// stable forms are the more accurate near 0, where acosh(1 + t) cancels), and stay finite
+    /// and linear beyond: acosh(e^t) → t + ln 2, ln cosh u → u − ln 2.
+    #[test]
+    fn substitution_without_overflow() {
+        for i in 1..=700 {
+            let t = f64::from(i) * 0.999;
+            let direct = t.exp().acosh();
+            assert!((acosh_exp(t) / direct - 1.0).abs() <= 4.0 * EPS, "t = {t}");
+            assert!(
+                (ln_cosh(t) / t.cosh().ln() - 1.0).abs() <= 4.0 * EPS,
+                "u = {t}"
+            );
+        }
+        // Near 0: acosh(e^t) = √(2t)(1 + t/12 + …).
+        let t = 1e-12;
+        assert!((acosh_exp(t) / (2.0 * t).sqrt() - 1.0).abs() <= 1e-12);
+        assert_eq!(ln_cosh(0.0), 0.0);
+        for t in [1e3, 1e5, 1e300] {
+            assert_eq!(acosh_exp(t), t + std::f64::consts::LN_2);
+            assert_eq!(ln_cosh(t), t - std::f64::consts::LN_2);
+        }
+    }
 }

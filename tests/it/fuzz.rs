@@ -532,6 +532,20 @@ fn si_overflow_and_underflow_name_their_row() {
     }
 }
 
+/// Found by `psd_reader_reads_or_names_file_and_line` (2 of 60 seeds): a 1D PSD whose points
+/// lie more than 308 decades apart made the inverse Abel transform's substitution variable
+/// acosh(e^t) infinite and its panel count usize::MAX; the reader never returned (this test hung
+/// before the fix). Now it reads the file or names its file and line.
+#[test]
+fn one_d_psd_spanning_beyond_f64_range_returns() {
+    let text = "\u{feff}q (1/m);C (nm^3)\n\
+                2.619265000922726e157;3.339036897997493e250\n\
+                6.752991253610662e-298;9.098456516005827e219\n\
+                8.335795680492916e-286;0.8153936278483861e-227\n\
+                3.3212954118117803e265;4.456059503974242e-160\n";
+    check_reader(text).unwrap();
+}
+
 /// Found by `scene_reader_loads_or_names_file_and_line`: model parameters outside the model's
 /// domain (H > 1, q1 below q0, a roll-off outside [q0, q1), a Gaussian band reaching q = 0)
 /// passed the scene reader and failed later without the scene file or line.
