@@ -238,13 +238,17 @@ impl FieldStats {
             };
         }
         let nf = n as f64;
-        let mean = values.par_iter().sum::<f64>() / nf;
-        let ms = values.par_iter().map(|v| v * v).sum::<f64>() / nf;
-        let var = values
-            .par_iter()
-            .map(|v| (v - mean) * (v - mean))
-            .sum::<f64>()
-            / nf;
+        let sums = chunked_ref(values, |_, c| {
+            [c.iter().sum(), c.iter().map(|v| v * v).sum()]
+        });
+        let mean = sum(&sums, 0) / nf;
+        let ms = sum(&sums, 1) / nf;
+        let var = sum(
+            &chunked_ref(values, |_, c| {
+                [c.iter().map(|v| (v - mean) * (v - mean)).sum()]
+            }),
+            0,
+        ) / nf;
         let mut sorted = values.to_vec();
         sorted.par_sort_unstable_by(f64::total_cmp);
         let quantiles = QUANTILES

@@ -296,9 +296,12 @@ pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Erro
             if i + j > deg {
                 continue;
             }
+            // Summed in row order after the parallel map: the same bits whatever the threads.
             let num: f64 = (0..ny)
                 .into_par_iter()
                 .map(|iy| pyj[iy] * dot(map.row(iy), pxi))
+                .collect::<Vec<f64>>()
+                .iter()
                 .sum();
             let c = num / (dot(pxi, pxi) * dot(pyj, pyj));
             terms.push((i, j, c));
@@ -374,16 +377,16 @@ pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Erro
     let norm = map.dx * map.dy / ((2.0 * PI).powi(2) * (nx * ny) as f64 * msx * msy);
     let cell = dqx * dqy;
     let ppd = opts.points_per_decade;
+    // Columns in fixed blocks, each binned on its own, merged in block order: the sums do not
+    // depend on the thread count or scheduling.
+    const BLOCK: usize = 16;
     let bins = (0..half)
         .into_par_iter()
-        .fold(
-            || {
-                (
-                    Bins::new(q_lo, q_hi, ppd),
-                    vec![Complex64::new(0.0, 0.0); ny],
-                )
-            },
-            |(mut bins, mut col), kx| {
+        .chunks(BLOCK)
+        .map(|block| {
+            let mut bins = Bins::new(q_lo, q_hi, ppd);
+            let mut col = vec![Complex64::new(0.0, 0.0); ny];
+            for kx in block {
                 for iy in 0..ny {
                     col[iy] = spec[iy * half + kx];
                 }
@@ -406,11 +409,12 @@ pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Erro
                     }
                     bins.add(q, v.norm_sqr() * norm, cell, mult);
                 }
-                (bins, col)
-            },
-        )
-        .map(|(b, _)| b)
-        .reduce(|| Bins::new(q_lo, q_hi, ppd), Bins::merge);
+            }
+            bins
+        })
+        .collect::<Vec<Bins>>()
+        .into_iter()
+        .fold(Bins::new(q_lo, q_hi, ppd), Bins::merge);
     drop(spec);
     steps.push(format!(
         "radial average: log bins, {ppd} per decade, from q = {q_lo:.4e} 1/m"
