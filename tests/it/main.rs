@@ -11,6 +11,7 @@ mod extreme;
 mod figures;
 mod fixtures;
 mod fuzz;
+mod golden;
 mod interface_ref;
 mod kernel_table;
 mod layer;
