@@ -2,6 +2,7 @@
 //! 0 all checks pass, 1 a check fails, 2 bad input or a numerical failure.
 
 mod check;
+mod check_args;
 mod materials;
 
 use clap::{Parser, Subcommand};
