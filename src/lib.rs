@@ -22,6 +22,7 @@ pub mod junit;
 pub mod layer;
 pub mod material;
 pub mod parquet;
+pub mod plot;
 pub mod prec;
 pub mod psd;
 pub mod quad;
