@@ -9,10 +9,11 @@ use crate::figures::{Axis, Figure};
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-/// A log axis shows at most this many decades below the largest value (curves that fall
-/// further, e.g. interface stresses of thick films, leave the plot at its bottom).
-const LOG_DECADES: f64 = 6.0;
+/// By default a log axis shows at most this many decades below the largest value (curves that
+/// fall further, e.g. interface stresses of thick films, leave the plot at its bottom).
+pub const LOG_DECADES: f64 = 6.0;
 
 /// The default line colours.
 pub const PALETTE: [RGBColor; 5] = [
@@ -53,6 +54,8 @@ pub struct Extras {
     pub colors: Vec<RGBColor>,
     /// Width and height, px.
     pub size: (u32, u32),
+    /// Decades a log value axis shows below its largest value.
+    pub log_decades: f64,
 }
 
 impl Default for Extras {
@@ -63,6 +66,7 @@ impl Default for Extras {
             legend: Legend::UpperRight,
             colors: PALETTE.to_vec(),
             size: (800, 600),
+            log_decades: LOG_DECADES,
         }
     }
 }
@@ -75,11 +79,11 @@ fn plot_error(e: impl std::fmt::Display) -> Error {
 }
 
 /// The range shown on an axis for the values `v` (display units).
-fn range(axis: &Axis, v: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
+fn range(axis: &Axis, v: impl Iterator<Item = f64> + Clone, decades: f64) -> (f64, f64) {
     let v = v.filter(|v| v.is_finite());
     let max = v.clone().fold(f64::NEG_INFINITY, f64::max);
     if axis.log {
-        let floor = max / 10f64.powf(LOG_DECADES);
+        let floor = max / 10f64.powf(decades);
         let min = v.filter(|&v| v > 0.0).fold(f64::INFINITY, f64::min);
         // Whole decades around the data, widened by a hair so that rounding in the data or in
         // the axis's own key points does not drop the end decades' tick labels.
@@ -93,10 +97,23 @@ fn range(axis: &Axis, v: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
     }
 }
 
-/// A tick label: `1e-6` on log axes, a short decimal on linear ones.
+/// A tick label: `1e-6` (or `2.5e-6`) on log axes, a short decimal on linear ones.
 fn tick(v: f64, log: bool) -> String {
     if log {
-        format!("{v:e}")
+        let e = v.abs().log10().floor();
+        let m = v / 10f64.powf(e);
+        // Ticks are nice numbers; the axis ends are widened by 1e-9, so round the mantissa.
+        let m = (m * 100.0).round() / 100.0;
+        let (m, e) = if m >= 10.0 {
+            (m / 10.0, e + 1.0)
+        } else {
+            (m, e)
+        };
+        if (m - 1.0).abs() < 1e-9 {
+            format!("1e{e}")
+        } else {
+            format!("{m}e{e}")
+        }
     } else {
         let s = format!("{v:.6}");
         let s = s.trim_end_matches('0').trim_end_matches('.');
@@ -128,8 +145,8 @@ pub fn svg(fig: &Figure, extras: &Extras) -> Result<String, Error> {
         .flat_map(|s| s.y.iter())
         .chain(extras.markers.iter().filter(|m| !m.vertical).map(|m| &m.at))
         .map(|y| y / fig.y.scale);
-    let (x0, x1) = range(&fig.x, xs);
-    let (y0, y1) = range(&fig.y, ys);
+    let (x0, x1) = range(&fig.x, xs, f64::INFINITY);
+    let (y0, y1) = range(&fig.y, ys, extras.log_decades);
     let mut out = String::new();
     {
         let root = SVGBackend::with_string(&mut out, extras.size).into_drawing_area();
@@ -243,17 +260,22 @@ where
         chart
             .draw_series(DashedLineSeries::new(line, 6, 4, grey.stroke_width(2)))
             .map_err(plot_error)?;
-        let anchor = if m.vertical {
-            (line[0].0, y_hi)
+        // Vertical lines are labelled just right of their top end, horizontal ones just above
+        // their right end (clear of the axes' tick labels).
+        let style = ("sans-serif", 13).into_font().color(&BLACK);
+        let (anchor, offset, pos) = if m.vertical {
+            ((line[0].0, y_hi), (4, 4), Pos::new(HPos::Left, VPos::Top))
         } else {
-            (x_lo, line[0].1)
+            (
+                (x_hi, line[0].1),
+                (-4, -4),
+                Pos::new(HPos::Right, VPos::Bottom),
+            )
         };
         chart
-            .draw_series(std::iter::once(Text::new(
-                m.label.clone(),
-                anchor,
-                ("sans-serif", 13).into_font().color(&BLACK),
-            )))
+            .draw_series(std::iter::once(
+                EmptyElement::at(anchor) + Text::new(m.label.clone(), offset, style.pos(pos)),
+            ))
             .map_err(plot_error)?;
     }
     chart
@@ -350,9 +372,22 @@ mod tests {
             scale: 1.0,
             log: true,
         };
-        let (lo, hi) = range(&a, [2.0, 30.0].into_iter());
+        let (lo, hi) = range(&a, [2.0, 30.0].into_iter(), LOG_DECADES);
         assert!((lo - 1.0).abs() < 1e-8 && (hi - 100.0).abs() < 1e-6);
-        let (lo, hi) = range(&a, [10.0, 10.0].into_iter());
-        assert!(lo < 10.0 + 1e-6 && hi > 99.0, "{lo} {hi}");
+        let (lo, hi) = range(&a, [1e-20, 1.0].into_iter(), LOG_DECADES);
+        assert!((lo - 1e-6).abs() < 1e-14, "{lo}");
+        let (lo, hi2) = range(&a, [10.0, 10.0].into_iter(), LOG_DECADES);
+        assert!(hi < 1.0 + 1e-6 && hi2 > 99.0);
+        assert!(lo < 10.0 + 1e-6, "{lo}");
+    }
+
+    #[test]
+    fn ticks_read_as_people_write_them() {
+        assert_eq!(tick(1e-5 * (1.0 - 1e-9), true), "1e-5");
+        assert_eq!(tick(9.999999999e-6, true), "1e-5");
+        assert_eq!(tick(2.5e-6, true), "2.5e-6");
+        assert_eq!(tick(100.0, true), "1e2");
+        assert_eq!(tick(0.25, false), "0.25");
+        assert_eq!(tick(-0.0, false), "0");
     }
 }
