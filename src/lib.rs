@@ -21,6 +21,7 @@ pub mod figures;
 pub mod html;
 pub mod junit;
 pub mod layer;
+pub mod levers;
 pub mod material;
 pub mod parquet;
 pub mod plot;
