@@ -33,8 +33,10 @@
 //! base), these forms lose none. A, B, 1 − t use `exp_m1`; Cm, W, H, which vanish like x³, x⁴,
 //! x³, use their Taylor series below the branch points (x < 1 for Cm, x < 2 for W and H), where
 //! the series are truncated below 1e-19 of their sum, and the direct forms above, where
-//! the subtraction loses at most a factor 2.2 (≈ 1 bit). For x > 700, e^{−x} underflows and the
-//! bulk limits S = 1, f = g = 0 hold to all f64 digits (corrections are O(x² e^{−2x})).
+//! the subtraction loses at most a factor 2.2 (≈ 1 bit). For x > 700, S = 1 to all f64 digits
+//! (corrections are O(x² e^{−2x})); f and g keep their forms, with e^{−x} applied last (as
+//! e^{−x/2}·e^{−x/2}) when e^{−x}/D would leave the normal range, so they keep full relative
+//! accuracy down to 2.2e−308 and round into the subnormal range below it.
 //!
 //! [`KernelTable`] tabulates S⁻², f², g² for one material pair, checked against these forms to
 //! 2e−14, for the contact integrals' many evaluations per thickness.
@@ -94,8 +96,11 @@ pub struct Bilayer {
     k1: f64,
 }
 
-/// Above this q·d, e^{−qd} underflows and the bulk limits are exact in f64.
+/// Above this q·d, S = 1 in f64 (S − 1 = O(x² e^{−2x})).
 const QD_BULK: f64 = 700.0;
+/// Above this q·d, f and g (e^{−x} times a rational factor of order x: at most 2(1 + x) for f,
+/// and far below e^{745} for both) are below half the smallest subnormal: exactly 0 in f64.
+const QD_ZERO: f64 = 1490.0;
 
 mod table;
 pub use table::{KernelTable, Nodes, Squared, X_FAR};
@@ -234,19 +239,11 @@ impl Bilayer {
     /// S, f and g at qd ≥ 0.
     pub fn response(&self, qd: f64) -> Response {
         debug_assert!(qd >= 0.0);
-        if qd > QD_BULK {
-            return Response {
-                s: 1.0,
-                f: 0.0,
-                g: 0.0,
-            };
-        }
         let x = qd;
         let b = Blocks::new(x);
         let (r, k0, k1, t) = (self.r, self.k0, self.k1, b.t);
         let (nu0, nu1) = (self.film.poisson, self.substrate.poisson);
         let den = self.denominator(&b);
-        let pre = (1.0 + k0) * b.e1 / den;
         let fb = 2.0 * (1.0 - nu0) * (1.0 + t)
             + 2.0 * r * (1.0 - nu1) * b.one_minus_t
             + x * (b.one_minus_t + r * (k1 + t));
@@ -259,10 +256,27 @@ impl Bilayer {
             + 2.0 * nu0 * x * (1.0 + t)
             + r * x * (2.0 * (1.0 - 2.0 * nu1) + b.one_minus_t)
             + r * (1.0 - 2.0 * nu1) * b.one_minus_t;
+        let pre = (1.0 + k0) * b.e1 / den;
+        let (f, g) = if x > QD_ZERO {
+            (0.0, 0.0)
+        } else if pre >= f64::MIN_POSITIVE {
+            (pre * fb, pre * gb)
+        } else {
+            // e^{−x}/D below the normal range (a stiff film, or x > 708): the rational factor
+            // first, then e^{−x/2} twice, so that only a result that is itself subnormal
+            // loses digits.
+            let half = (-0.5 * x).exp();
+            let c = (1.0 + k0) / den;
+            (c * fb * half * half, c * gb * half * half)
+        };
         Response {
-            s: self.numerator_s(&b) / den,
-            f: pre * fb,
-            g: pre * gb,
+            s: if x > QD_BULK {
+                1.0
+            } else {
+                self.numerator_s(&b) / den
+            },
+            f,
+            g,
         }
     }
 }

@@ -167,7 +167,10 @@ proptest! {
         // f never exceeds the rigid-mirror value 2(1 + qd)e^{-qd} (approached by a soft film on a
         // rigid base at large qd; max over the 100-digit grid: 2 - 2e-8). g has no such bound:
         // a hard film on a soft base carries interface shear far above the half-space value.
-        prop_assert!(r.f <= 2.0 * (1.0 + qd) * (-qd).exp() * (1.0 + 1e-12));
+        // e^{−qd} as e^{−qd/2}·e^{−qd/2} keeps the bound from underflowing before f does; one
+        // subnormal step of slack for the rounding of both into the subnormal range.
+        let half = (-0.5 * qd).exp();
+        prop_assert!(r.f <= 2.0 * (1.0 + qd) * half * half * (1.0 + 1e-12) + 5e-324);
     }
 }
 
@@ -216,4 +219,91 @@ fn s_turns_at_most_once_and_f_never_rises() {
             );
         }
     }
+}
+
+/// f and g above q·d = 680, where e^{−x}/D leaves the normal range for a stiff film and e^{−x}
+/// itself does above 708: against f = 2e^{−x}(1 + x)/(1 + r), g = 2e^{−x}x/(1 + r), the exact
+/// forms for ν0 = ν1 = ½ once e^{−2x} is negligible (r = G0/G1), evaluated with mpmath at 40
+/// digits (`2*exp(-x)*(1+x)/(1+r)` and `2*exp(-x)*x/(1+r)`). Full relative accuracy while the
+/// value is normal; within rounding once it is subnormal; zero only below the subnormal range.
+#[test]
+fn f_and_g_keep_their_digits_down_to_the_subnormal_range() {
+    let cases: [(f64, f64, f64, f64, f64); 12] = [
+        (
+            1e17,
+            1e9,
+            680.5,
+            3.9545850146543076e-301,
+            3.9487822486753576e-301,
+        ),
+        (
+            1e17,
+            1e9,
+            699.5,
+            2.277445744658315e-309,
+            2.27419457300284e-309,
+        ),
+        (1e17, 1e9, 700.5, 8.3902150705495e-310, 8.3782546784318e-310),
+        (1e17, 1e9, 705.0, 9.38047759697e-312, 9.367190801504e-312),
+        (1e17, 1e9, 720.0, 2.930476e-318, 2.92641e-318),
+        (1e17, 1e9, 740.0, 0.0, 0.0),
+        (
+            1e6,
+            1e11,
+            680.5,
+            3.95454550874507e-293,
+            3.948742800735173e-293,
+        ),
+        (
+            1e6,
+            1e11,
+            699.5,
+            2.2774229932028398e-301,
+            2.274171854026248e-301,
+        ),
+        (
+            1e6,
+            1e11,
+            700.5,
+            8.390131253139096e-302,
+            8.378170980504543e-302,
+        ),
+        (
+            1e6,
+            1e11,
+            705.0,
+            9.380383886934239e-304,
+            9.36709722420487e-304,
+        ),
+        (
+            1e6,
+            1e11,
+            720.0,
+            2.9304475126207e-310,
+            2.92638309166006e-310,
+        ),
+        (1e6, 1e11, 740.0, 6.20764e-319, 6.1993e-319),
+    ];
+    for (e0, e1, x, f, g) in cases {
+        let pair = Bilayer::new(
+            Elastic::new(e0, 0.5).unwrap(),
+            Elastic::new(e1, 0.5).unwrap(),
+        );
+        let r = pair.response(x);
+        assert!((r.s - 1.0).abs() <= 3e-16, "S = {}", r.s);
+        for (got, want, what) in [(r.f, f, "f"), (r.g, g, "g")] {
+            let tol = 1e-14 * want + 1e-323;
+            assert!(
+                (got - want).abs() <= tol,
+                "{what} at qd = {x}, E0/E1 = {}: {got:e} vs {want:e}",
+                e0 / e1
+            );
+        }
+    }
+    let far = Bilayer::new(
+        Elastic::new(1e6, 0.5).unwrap(),
+        Elastic::new(1e11, 0.3).unwrap(),
+    )
+    .response(800.0);
+    assert_eq!((far.s, far.f, far.g), (1.0, 0.0, 0.0));
 }
