@@ -90,8 +90,9 @@ pub fn resolve(
         return Err(ctx.missing(
             Key::YieldStrength.name(),
             &format!(
-                "substrate '{}' has no yield strength: give one or leave substrate-yield out of criteria.checks",
-                substrate.name
+                "substrate '{}' has no yield strength: give one or leave substrate-yield out of {}",
+                substrate.name,
+                Key::Checks.name()
             ),
         ));
     }
@@ -275,7 +276,11 @@ fn resolve_bond(r: Reader<'_>, library: &Library) -> Result<Bond, Error> {
             source: "given in the scene".into(),
         }),
         (None, None) => Err(r.ctx.missing(
-            "bond.material or bond.shear_strength",
+            &format!(
+                "{} or {}",
+                Key::BondMaterial.name(),
+                Key::ShearStrength.name()
+            ),
             "name a bond (coatcheck materials) or give its shear strength, e.g. --shear-strength \"10 MPa\"",
         )),
     }

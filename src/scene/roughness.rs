@@ -254,7 +254,12 @@ pub(super) fn resolve_roughness(r: Reader<'_>) -> Result<Roughness, Error> {
         resolve_model(r, f, scale.is_some())?
     } else {
         return Err(r.ctx.missing(
-            "roughness.psd, roughness.profile or roughness.model",
+            &format!(
+                "{}, {} or {}",
+                Key::Psd.name(),
+                Key::Profile.name(),
+                Key::Model.name()
+            ),
             "give a PSD file (--psd surface.csv), heights (--profile map.csv) or a model (model = \"self-affine\" ...)",
         ));
     };
