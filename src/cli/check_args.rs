@@ -193,4 +193,21 @@ mod tests {
         // A name never starts with '-': `--film -x` is a missing value, not a name.
         assert!(Check::try_parse_from(["check", "--film", "-x"]).is_err());
     }
+
+    #[test]
+    fn an_update_replaces_only_the_flags_it_gives() {
+        let mut args = parse(&["--thickness", "1um", "--film", "nbr"]);
+        let m = Check::command()
+            .try_get_matches_from(["check", "--thickness", "2um", "--bond", "epoxy"])
+            .unwrap();
+        args.update_from_arg_matches(&m).unwrap();
+        assert_eq!(
+            args.overrides(),
+            vec![
+                ("film.material", "nbr".to_string()),
+                ("film.thickness", "2um".to_string()),
+                ("bond.material", "epoxy".to_string()),
+            ]
+        );
+    }
 }
