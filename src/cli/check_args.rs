@@ -1,6 +1,10 @@
-//! The arguments of `coatcheck check`: every flag, and the scene keys they override.
+//! The arguments of `coatcheck check`: its own flags, and one flag per scene key (built from
+//! the scene's key table) whose values override the scene file's.
 
+use clap::builder::ValueParser;
+use clap::{Arg, ArgAction, ArgMatches, Command, FromArgMatches};
 use coatcheck::report::Format;
+use coatcheck::scene::{Key, Value};
 use std::path::PathBuf;
 
 const AFTER_HELP: &str = "\
@@ -34,104 +38,9 @@ pub struct CheckArgs {
     /// More scene files or directories of *.toml scenes: a batch run with a summary table.
     #[arg(value_name = "MORE_SCENES")]
     pub more_scenes: Vec<PathBuf>,
-    /// Measured PSD file (columns q [1/m], C [m^4]); relative to the working directory.
-    #[arg(long, allow_hyphen_values = true)]
-    pub psd: Option<String>,
-    /// Measured heights (line scans or a height map, as `coatcheck psd` reads them); the PSD is
-    /// computed with the `coatcheck psd` defaults.
-    #[arg(long, allow_hyphen_values = true)]
-    pub profile: Option<String>,
-    /// Roughness model: self-affine (eq. 2) or gaussian (eq. 5).
-    #[arg(long)]
-    pub model: Option<String>,
-    /// Hurst exponent H of the self-affine model.
-    #[arg(long, allow_hyphen_values = true)]
-    pub hurst: Option<String>,
-    /// Lowest wavenumber q0 of the model (or centre of the Gaussian band), e.g. "1e5 1/m".
-    #[arg(long, allow_hyphen_values = true)]
-    pub q0: Option<String>,
-    /// Short-wavelength cut-off q1 of the self-affine model.
-    #[arg(long, allow_hyphen_values = true)]
-    pub q1: Option<String>,
-    /// Roll-off wavenumber q_r of the self-affine model (flat below it).
-    #[arg(long, allow_hyphen_values = true)]
-    pub roll_off: Option<String>,
-    /// Width Q of the Gaussian band.
-    #[arg(long, allow_hyphen_values = true)]
-    pub width: Option<String>,
-    /// Scale the spectrum to this rms slope.
-    #[arg(long, allow_hyphen_values = true)]
-    pub rms_slope: Option<String>,
-    /// Scale the spectrum to this rms height, e.g. 1um.
-    #[arg(long, allow_hyphen_values = true)]
-    pub rms_height: Option<String>,
-    /// Use measured data only above this wavenumber.
-    #[arg(long, allow_hyphen_values = true)]
-    pub q_min: Option<String>,
-    /// Use measured data only below this wavenumber.
-    #[arg(long, allow_hyphen_values = true)]
-    pub q_max: Option<String>,
-    /// PSD file: column of q (1-based number or header name; default: detected from the header).
-    #[arg(long)]
-    pub q_col: Option<String>,
-    /// PSD file: column of C.
-    #[arg(long)]
-    pub c_col: Option<String>,
-    /// PSD file: unit of q (e.g. 1/um), overriding the header's.
-    #[arg(long)]
-    pub q_unit: Option<String>,
-    /// PSD file: unit of C (e.g. um^4 for a 2D PSD, nm^3 for a 1D PSD), overriding the header's.
-    #[arg(long)]
-    pub c_unit: Option<String>,
-    /// PSD file: 2d (C in m^4) or 1d (C1D in m^3 from line scans, converted exactly by the
-    /// inverse Abel transform); default from the unit of C, else 2d.
-    #[arg(long)]
-    pub psd_kind: Option<String>,
-    /// Film material (name from `coatcheck materials`).
-    #[arg(long)]
-    pub film: Option<String>,
-    /// Film Young's modulus (instead of a material name).
-    #[arg(long, allow_hyphen_values = true)]
-    pub film_youngs_modulus: Option<String>,
-    /// Film Poisson ratio (with --film-youngs-modulus).
-    #[arg(long, allow_hyphen_values = true)]
-    pub film_poisson_ratio: Option<String>,
-    /// Film thickness d, e.g. 10um.
-    #[arg(long, allow_hyphen_values = true)]
-    pub thickness: Option<String>,
-    /// Substrate material (name from `coatcheck materials`).
-    #[arg(long)]
-    pub substrate: Option<String>,
-    /// Substrate Young's modulus (instead of a material name).
-    #[arg(long, allow_hyphen_values = true)]
-    pub substrate_youngs_modulus: Option<String>,
-    /// Substrate Poisson ratio (with --substrate-youngs-modulus).
-    #[arg(long, allow_hyphen_values = true)]
-    pub substrate_poisson_ratio: Option<String>,
-    /// Substrate yield strength (overrides the material's).
-    #[arg(long, allow_hyphen_values = true)]
-    pub yield_strength: Option<String>,
-    /// Bond (name from `coatcheck materials`).
-    #[arg(long)]
-    pub bond: Option<String>,
-    /// Bond shear strength (instead of a bond name).
-    #[arg(long, allow_hyphen_values = true)]
-    pub shear_strength: Option<String>,
-    /// Nominal pressure p0, e.g. "0.1 MPa".
-    #[arg(long, allow_hyphen_values = true)]
-    pub pressure: Option<String>,
-    /// Exceedance probability that defines a peak value (default 1e-6).
-    #[arg(long, allow_hyphen_values = true)]
-    pub epsilon: Option<String>,
-    /// Safety factor: limits are strengths divided by it (default 1).
-    #[arg(long, allow_hyphen_values = true)]
-    pub safety_factor: Option<String>,
-    /// Checks to run, comma-separated (default: bond-shear,substrate-yield,min-thickness).
-    #[arg(long)]
-    pub checks: Option<String>,
-    /// Relative tolerance of the contact integrals (default 1e-8).
-    #[arg(long, allow_hyphen_values = true)]
-    pub rtol: Option<String>,
+    /// Flags for the scene keys (`--psd`, `--thickness`, ...), from the scene's key table.
+    #[command(flatten)]
+    pub keys: SceneFlags,
     /// Output format.
     #[arg(long, value_enum, default_value = "table")]
     pub format: Format,
@@ -160,43 +69,145 @@ pub struct CheckArgs {
 }
 
 impl CheckArgs {
+    /// The scene keys given as flags, `(key name, text)`, in table order.
     pub fn overrides(&self) -> Vec<(&'static str, String)> {
-        let all: [(&'static str, &Option<String>); 32] = [
-            ("roughness.psd", &self.psd),
-            ("roughness.profile", &self.profile),
-            ("roughness.model", &self.model),
-            ("roughness.hurst", &self.hurst),
-            ("roughness.q0", &self.q0),
-            ("roughness.q1", &self.q1),
-            ("roughness.roll_off", &self.roll_off),
-            ("roughness.width", &self.width),
-            ("roughness.rms_slope", &self.rms_slope),
-            ("roughness.rms_height", &self.rms_height),
-            ("roughness.q_min", &self.q_min),
-            ("roughness.q_max", &self.q_max),
-            ("roughness.q_col", &self.q_col),
-            ("roughness.c_col", &self.c_col),
-            ("roughness.q_unit", &self.q_unit),
-            ("roughness.c_unit", &self.c_unit),
-            ("roughness.psd_kind", &self.psd_kind),
-            ("film.material", &self.film),
-            ("film.youngs_modulus", &self.film_youngs_modulus),
-            ("film.poisson_ratio", &self.film_poisson_ratio),
-            ("film.thickness", &self.thickness),
-            ("substrate.material", &self.substrate),
-            ("substrate.youngs_modulus", &self.substrate_youngs_modulus),
-            ("substrate.poisson_ratio", &self.substrate_poisson_ratio),
-            ("substrate.yield_strength", &self.yield_strength),
-            ("bond.material", &self.bond),
-            ("bond.shear_strength", &self.shear_strength),
-            ("load.pressure", &self.pressure),
-            ("criteria.epsilon", &self.epsilon),
-            ("criteria.safety_factor", &self.safety_factor),
-            ("criteria.checks", &self.checks),
-            ("numerics.rtol", &self.rtol),
-        ];
-        all.into_iter()
-            .filter_map(|(k, v)| v.clone().map(|v| (k, v)))
+        self.keys
+            .0
+            .iter()
+            .map(|(k, v)| (k.name(), v.clone()))
             .collect()
+    }
+}
+
+/// The values of the scene-key flags given, in table order. One flag per row of
+/// [`coatcheck::scene::KEYS`]: `--flag <FLAG>` with the row's help; numbers and file names may
+/// start with `-` (a negative number is then rejected naming its key).
+#[derive(Debug)]
+pub struct SceneFlags(Vec<(Key, String)>);
+
+/// The flag's name without dashes: also its argument id.
+fn long(key: Key) -> &'static str {
+    key.flag().trim_start_matches("--")
+}
+
+fn arg(key: Key) -> Arg {
+    let spec = key.spec();
+    Arg::new(long(key))
+        .long(long(key))
+        .value_name(long(key).to_uppercase().replace('-', "_"))
+        .help(spec.help)
+        .action(ArgAction::Set)
+        .value_parser(ValueParser::string())
+        .allow_hyphen_values(matches!(spec.value, Value::Files | Value::Quantity(..)))
+}
+
+impl clap::Args for SceneFlags {
+    fn augment_args(cmd: Command) -> Command {
+        cmd.args(Key::ALL.iter().map(|&k| arg(k)))
+    }
+
+    fn augment_args_for_update(cmd: Command) -> Command {
+        Self::augment_args(cmd)
+    }
+}
+
+impl FromArgMatches for SceneFlags {
+    fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
+        Ok(SceneFlags(
+            Key::ALL
+                .iter()
+                .filter_map(|&k| m.get_one::<String>(long(k)).map(|v| (k, v.clone())))
+                .collect(),
+        ))
+    }
+
+    fn update_from_arg_matches(&mut self, m: &ArgMatches) -> Result<(), clap::Error> {
+        for &k in Key::ALL {
+            if let Some(v) = m.get_one::<String>(long(k)) {
+                self.0.retain(|(key, _)| *key != k);
+                self.0.push((k, v.clone()));
+            }
+        }
+        self.0.sort_by_key(|(k, _)| *k as usize);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::{CommandFactory, Parser};
+    use coatcheck::scene::KEYS;
+
+    #[derive(Parser)]
+    struct Check {
+        #[command(flatten)]
+        args: CheckArgs,
+    }
+
+    fn parse(argv: &[&str]) -> CheckArgs {
+        Check::try_parse_from(std::iter::once("check").chain(argv.iter().copied()))
+            .unwrap()
+            .args
+    }
+
+    #[test]
+    fn every_scene_key_has_its_flag_with_its_help() {
+        Check::command().debug_assert();
+        let help = Check::command().render_help().to_string();
+        for spec in KEYS {
+            let value = spec.flag[2..].to_uppercase().replace('-', "_");
+            assert!(
+                help.contains(&format!("{} <{value}>", spec.flag)),
+                "{}",
+                spec.flag
+            );
+            assert!(help.contains(spec.help), "{}", spec.help);
+            let args = parse(&[spec.flag, "x"]);
+            assert_eq!(args.overrides(), vec![(spec.name, "x".to_string())]);
+        }
+    }
+
+    #[test]
+    fn overrides_keep_table_order_and_hyphens_where_numbers_go() {
+        let args = parse(&[
+            "s.toml",
+            "--pressure",
+            "1MPa",
+            "--thickness",
+            "-1um",
+            "--film",
+            "nbr",
+            "--format",
+            "json",
+        ]);
+        assert_eq!(
+            args.overrides(),
+            vec![
+                ("film.material", "nbr".to_string()),
+                ("film.thickness", "-1um".to_string()),
+                ("load.pressure", "1MPa".to_string()),
+            ]
+        );
+        assert!(args.scene.is_some() && args.more_scenes.is_empty());
+        // A name never starts with '-': `--film -x` is a missing value, not a name.
+        assert!(Check::try_parse_from(["check", "--film", "-x"]).is_err());
+    }
+
+    #[test]
+    fn an_update_replaces_only_the_flags_it_gives() {
+        let mut args = parse(&["--thickness", "1um", "--film", "nbr"]);
+        let m = Check::command()
+            .try_get_matches_from(["check", "--thickness", "2um", "--bond", "epoxy"])
+            .unwrap();
+        args.update_from_arg_matches(&m).unwrap();
+        assert_eq!(
+            args.overrides(),
+            vec![
+                ("film.material", "nbr".to_string()),
+                ("film.thickness", "2um".to_string()),
+                ("bond.material", "epoxy".to_string()),
+            ]
+        );
     }
 }

@@ -150,6 +150,29 @@ pub enum Spectrum {
     Gaussian(GaussianBand),
 }
 
+/// A parameter of the paper's roughness models.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModelParam {
+    Hurst,
+    Q0,
+    Q1,
+    RollOff,
+    Width,
+}
+
+impl ModelParam {
+    fn error(self, error: Error) -> ModelError {
+        ModelError { param: self, error }
+    }
+}
+
+/// A model parameter outside the model's domain: which one, and the error that says why.
+#[derive(Debug)]
+pub struct ModelError {
+    pub param: ModelParam,
+    pub error: Error,
+}
+
 /// How many Gaussian widths either side of the peak are integrated (e^{−h²/2} < 1e-19 beyond).
 const GAUSS_HALF_SPAN: f64 = 9.5;
 
@@ -157,18 +180,36 @@ impl Spectrum {
     /// Self-affine model with C(q_r) = 1 m^4; scale it with [`Spectrum::scaled_to_rms_slope`]
     /// or [`Spectrum::scaled_to_rms_height`].
     pub fn self_affine(hurst: f64, q0: f64, q1: f64, roll_off: Option<f64>) -> Result<Self, Error> {
+        Self::self_affine_checked(hurst, q0, q1, roll_off).map_err(|e| e.error)
+    }
+
+    /// [`Spectrum::self_affine`], its error naming the parameter outside the model's domain.
+    pub fn self_affine_checked(
+        hurst: f64,
+        q0: f64,
+        q1: f64,
+        roll_off: Option<f64>,
+    ) -> Result<Self, ModelError> {
         if !(hurst.is_finite() && hurst > 0.0 && hurst <= 1.0) {
-            return Err(Error::invalid("Hurst exponent H", hurst, "0 < H <= 1"));
+            return Err(ModelParam::Hurst.error(Error::invalid(
+                "Hurst exponent H",
+                hurst,
+                "0 < H <= 1",
+            )));
         }
         if !(q0.is_finite() && q0 > 0.0) {
-            return Err(Error::invalid("q0", q0, "a finite q0 > 0 in 1/m"));
+            return Err(ModelParam::Q0.error(Error::invalid("q0", q0, "a finite q0 > 0 in 1/m")));
         }
         if !(q1.is_finite() && q1 > q0) {
-            return Err(Error::invalid("q1", q1, "a finite q1 > q0"));
+            return Err(ModelParam::Q1.error(Error::invalid("q1", q1, "a finite q1 > q0")));
         }
         let q_r = roll_off.unwrap_or(q0);
         if !(q_r >= q0 && q_r < q1) {
-            return Err(Error::invalid("roll-off q_r", q_r, "q0 <= q_r < q1"));
+            return Err(ModelParam::RollOff.error(Error::invalid(
+                "roll-off q_r",
+                q_r,
+                "q0 <= q_r < q1",
+            )));
         }
         Ok(Spectrum::SelfAffine(SelfAffine {
             hurst,
@@ -181,15 +222,20 @@ impl Spectrum {
 
     /// Gaussian band (eq. 5) with h0 = 1 m; scale it to the wanted rms slope or height.
     pub fn gaussian(q0: f64, width: f64) -> Result<Self, Error> {
+        Self::gaussian_checked(q0, width).map_err(|e| e.error)
+    }
+
+    /// [`Spectrum::gaussian`], its error naming the parameter outside the model's domain.
+    pub fn gaussian_checked(q0: f64, width: f64) -> Result<Self, ModelError> {
         if !(q0.is_finite() && q0 > 0.0) {
-            return Err(Error::invalid("q0", q0, "a finite q0 > 0 in 1/m"));
+            return Err(ModelParam::Q0.error(Error::invalid("q0", q0, "a finite q0 > 0 in 1/m")));
         }
         if !(width.is_finite() && width > 0.0 && width <= q0 / 3.0) {
-            return Err(Error::invalid(
+            return Err(ModelParam::Width.error(Error::invalid(
                 "Gaussian width Q",
                 width,
                 "0 < Q <= q0/3 (a band well away from q = 0)",
-            ));
+            )));
         }
         Ok(Spectrum::Gaussian(GaussianBand { q0, width, h0: 1.0 }))
     }

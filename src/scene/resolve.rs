@@ -1,0 +1,317 @@
+//! Validation of a [`RawScene`] into a [`Scene`] (SI units): each value read as its key's
+//! table entry says, contradictions between alternatives, materials and bond looked up in the
+//! library, criteria and numerics. Errors name the key and its line (or flag).
+
+use super::Scene;
+use super::keys::{Choice, Key, RawScene, Value};
+use super::roughness::resolve_roughness;
+use crate::check::{CheckKind, Checks, Criteria};
+use crate::error::Error;
+use crate::layer::Elastic;
+use crate::material::{Bond, Kind, Library, Material};
+use crate::prec::Settings;
+use crate::tomlin::{Ctx, Field};
+use crate::units::Dim;
+use std::path::Path;
+
+/// The raw scene read through the key table: values with their units and ranges checked,
+/// errors at the key's line or flag.
+#[derive(Clone, Copy)]
+pub(super) struct Reader<'a> {
+    pub raw: &'a RawScene,
+    pub ctx: Ctx<'a>,
+}
+
+impl Reader<'_> {
+    pub fn field(&self, key: Key) -> Option<&Field> {
+        self.raw.get(key)
+    }
+
+    /// An error about `key`, given at `f`.
+    pub fn error(&self, key: Key, f: &Field, msg: impl std::fmt::Display) -> Error {
+        self.ctx.error(&f.origin, key.name(), msg)
+    }
+
+    /// The value of quantity `key` in SI, within its range.
+    pub fn quantity(&self, key: Key) -> Result<Option<f64>, Error> {
+        self.field(key)
+            .map(|f| self.quantity_of(key, f))
+            .transpose()
+    }
+
+    /// `f` read as the value of quantity `key`.
+    pub fn quantity_of(&self, key: Key, f: &Field) -> Result<f64, Error> {
+        let Value::Quantity(dim, range) = key.spec().value else {
+            unreachable!("{} is not a quantity", key.name());
+        };
+        let v = if range.positive() {
+            self.ctx.positive(f, key.name(), dim)?
+        } else {
+            self.ctx.quantity(f, key.name(), dim)?
+        };
+        match range.reject(v) {
+            Some(why) => Err(self.error(key, f, why)),
+            None => Ok(v),
+        }
+    }
+
+    /// The text of `key`.
+    pub fn text(&self, key: Key) -> Result<Option<&str>, Error> {
+        self.field(key)
+            .map(|f| self.ctx.text(f, key.name()))
+            .transpose()
+    }
+}
+
+/// Validate a raw scene.
+pub fn resolve(
+    raw: &RawScene,
+    ctx: Ctx<'_>,
+    library: &Library,
+    file: Option<&Path>,
+) -> Result<Scene, Error> {
+    let r = Reader { raw, ctx };
+    check_schema_version(raw, ctx)?;
+    let coatcheck_version = pinned_version(raw, ctx)?;
+    check_contradictions(r)?;
+    let roughness = resolve_roughness(r)?;
+    let film = resolve_material(r, library, Role::FILM)?;
+    let thickness = r.quantity(Key::Thickness)?;
+    let substrate = resolve_material(r, library, Role::SUBSTRATE)?;
+    let bond = resolve_bond(r, library)?;
+    let pressure = r.quantity(Key::Pressure)?.ok_or_else(|| {
+        ctx.missing(
+            Key::Pressure.name(),
+            "give the nominal pressure, e.g. --pressure \"0.1 MPa\"",
+        )
+    })?;
+    let criteria = resolve_criteria(r)?;
+    if criteria.checks.substrate_yield && substrate.yield_strength.is_none() {
+        return Err(ctx.missing(
+            Key::YieldStrength.name(),
+            &format!(
+                "substrate '{}' has no yield strength: give one or leave substrate-yield out of {}",
+                substrate.name,
+                Key::Checks.name()
+            ),
+        ));
+    }
+    let mut settings = Settings::default();
+    if let Some(rtol) = r.quantity(Key::Rtol)? {
+        settings.rtol = rtol;
+    }
+    Ok(Scene {
+        file: file.map(Path::to_path_buf),
+        coatcheck_version,
+        roughness,
+        film,
+        thickness,
+        substrate,
+        bond,
+        pressure,
+        criteria,
+        settings,
+    })
+}
+
+fn check_schema_version(raw: &RawScene, ctx: Ctx<'_>) -> Result<(), Error> {
+    if let Some(v) = &raw.schema_version {
+        let n = ctx.quantity(v, "schema_version", Dim::Dimensionless)?;
+        if n != 1.0 {
+            return Err(ctx.error(
+                &v.origin,
+                "schema_version",
+                format!("{n} (this build reads scene schema_version = 1)"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The coatcheck version the scene pins (`major.minor.patch`), if any.
+fn pinned_version(raw: &RawScene, ctx: Ctx<'_>) -> Result<Option<String>, Error> {
+    let Some(v) = &raw.coatcheck_version else {
+        return Ok(None);
+    };
+    let text = ctx.text(v, "coatcheck_version")?.trim();
+    let valid = text.split('.').count() == 3
+        && text
+            .split('.')
+            .all(|p| !p.is_empty() && p.chars().all(|c| c.is_ascii_digit()));
+    if !valid {
+        return Err(ctx.error(
+            &v.origin,
+            "coatcheck_version",
+            format!(
+                "'{text}' (expected a version like \"{}\")",
+                env!("CARGO_PKG_VERSION")
+            ),
+        ));
+    }
+    Ok(Some(text.to_string()))
+}
+
+/// Keys of two alternatives of one choice: the first given key of the second alternative is
+/// reported, naming the first alternative's.
+fn check_contradictions(r: Reader<'_>) -> Result<(), Error> {
+    for choice in Choice::ALL {
+        let alt_of = |k: Key| k.spec().alt.filter(|(c, _)| *c == choice).map(|(_, a)| a);
+        let last = Key::ALL
+            .iter()
+            .filter_map(|&k| alt_of(k))
+            .max()
+            .unwrap_or(0);
+        let mut given = (0..=last).filter_map(|alt| {
+            Key::ALL
+                .iter()
+                .filter(|&&k| alt_of(k) == Some(alt))
+                .find_map(|&k| r.field(k).map(|f| (k, f)))
+        });
+        if let (Some((k1, _)), Some((k2, f2))) = (given.next(), given.next()) {
+            return Err(r.error(
+                k2,
+                f2,
+                format!("contradicts {} (give one of them, not both)", k1.name()),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The keys of a film or a substrate.
+struct Role {
+    name: &'static str,
+    kind: Kind,
+    material: Key,
+    youngs: Key,
+    poisson: Key,
+    yield_strength: Option<Key>,
+}
+
+impl Role {
+    const FILM: Role = Role {
+        name: "film",
+        kind: Kind::Film,
+        material: Key::FilmMaterial,
+        youngs: Key::FilmYoungsModulus,
+        poisson: Key::FilmPoissonRatio,
+        yield_strength: None,
+    };
+    const SUBSTRATE: Role = Role {
+        name: "substrate",
+        kind: Kind::Substrate,
+        material: Key::SubstrateMaterial,
+        youngs: Key::SubstrateYoungsModulus,
+        poisson: Key::SubstratePoissonRatio,
+        yield_strength: Some(Key::YieldStrength),
+    };
+}
+
+/// A film or substrate: a library material by name, or Young's modulus and Poisson ratio; a
+/// given yield strength overrides the material's.
+fn resolve_material(r: Reader<'_>, library: &Library, role: Role) -> Result<Material, Error> {
+    let ctx = r.ctx;
+    let mut m = match (
+        r.field(role.material),
+        r.field(role.youngs),
+        r.field(role.poisson),
+    ) {
+        (Some(f), _, _) => {
+            let name = ctx.text(f, role.material.name())?;
+            library
+                .material(name)
+                .map_err(|e| r.error(role.material, f, e))?
+                .clone()
+        }
+        (None, Some(fe), Some(fnu)) => {
+            let e = r.quantity_of(role.youngs, fe)?;
+            let nu = r.quantity_of(role.poisson, fnu)?;
+            let elastic = Elastic::new(e, nu).map_err(|err| r.error(role.poisson, fnu, err))?;
+            Material {
+                name: "custom".into(),
+                kind: role.kind,
+                elastic,
+                yield_strength: None,
+                source: "given in the scene".into(),
+            }
+        }
+        (None, Some(f), None) | (None, None, Some(f)) => {
+            return Err(ctx.error(
+                &f.origin,
+                &format!("{} and {}", role.youngs.name(), role.poisson.name()),
+                "both are needed when no material is named",
+            ));
+        }
+        (None, None, None) => {
+            return Err(ctx.missing(
+                role.material.name(),
+                &format!(
+                    "name a {} material (coatcheck materials) or give youngs_modulus and poisson_ratio",
+                    role.name
+                ),
+            ));
+        }
+    };
+    if let Some(key) = role.yield_strength
+        && let Some(y) = r.quantity(key)?
+    {
+        m.yield_strength = Some(y);
+    }
+    Ok(m)
+}
+
+/// The bond: by name from the library, or its shear strength.
+fn resolve_bond(r: Reader<'_>, library: &Library) -> Result<Bond, Error> {
+    match (r.field(Key::BondMaterial), r.field(Key::ShearStrength)) {
+        (Some(f), _) => {
+            let name = r.ctx.text(f, Key::BondMaterial.name())?;
+            Ok(library
+                .bond(name)
+                .map_err(|e| r.error(Key::BondMaterial, f, e))?
+                .clone())
+        }
+        (None, Some(f)) => Ok(Bond {
+            name: "custom".into(),
+            shear_strength: r.quantity_of(Key::ShearStrength, f)?,
+            source: "given in the scene".into(),
+        }),
+        (None, None) => Err(r.ctx.missing(
+            &format!(
+                "{} or {}",
+                Key::BondMaterial.name(),
+                Key::ShearStrength.name()
+            ),
+            "name a bond (coatcheck materials) or give its shear strength, e.g. --shear-strength \"10 MPa\"",
+        )),
+    }
+}
+
+/// Exceedance probability, safety factor and the checks to run (defaults where not given).
+fn resolve_criteria(r: Reader<'_>) -> Result<Criteria, Error> {
+    let mut criteria = Criteria::default();
+    if let Some(e) = r.quantity(Key::Epsilon)? {
+        criteria.epsilon = e;
+    }
+    if let Some(s) = r.quantity(Key::SafetyFactor)? {
+        criteria.safety_factor = s;
+    }
+    if let Some(f) = r.field(Key::Checks) {
+        let names = r.ctx.list(f, Key::Checks.name())?;
+        if names.is_empty() {
+            return Err(r.error(Key::Checks, f, "empty (expected at least one check)"));
+        }
+        let mut checks = Checks::none();
+        for n in names {
+            let c = CheckKind::from_name(&n).ok_or_else(|| {
+                r.error(
+                    Key::Checks,
+                    f,
+                    format!("unknown check '{n}' (expected bond-shear, substrate-yield or min-thickness)"),
+                )
+            })?;
+            checks.enable(c);
+        }
+        criteria.checks = checks;
+    }
+    Ok(criteria)
+}
