@@ -136,17 +136,10 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
         (text, if pass { 0 } else { 1 })
     };
     match &args.output {
-        Some(path) => report::write_atomic(path, &text)?,
-        None => emit(&text),
+        Some(path) => report::write_file(path, &text)?,
+        None => report::stdout(&text)?,
     }
     Ok(code)
-}
-
-/// Print to standard output; a closed pipe (e.g. `| head`) is not an error.
-pub fn emit(text: &str) {
-    use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
 }
 
 /// Several scenes, or a directory: a batch.
@@ -174,7 +167,7 @@ fn write_single_extras(args: &CheckArgs, scene: &Scene, outcome: &Outcome) -> Re
 
 fn write_batch_extras(args: &CheckArgs, runs: &[SceneRun]) -> Result<(), Error> {
     if let Some(path) = &args.junit {
-        report::write_atomic(path, &coatcheck::junit::report(runs)?)?;
+        report::write_file(path, &coatcheck::junit::report(runs)?)?;
     }
     if let Some(path) = &args.parquet {
         coatcheck::parquet::write_batch(path, runs)?;
@@ -233,8 +226,8 @@ fn run_files(args: &CheckArgs, scene: &Scene, sweep: bool) -> Result<i32, Error>
     };
     write_batch_extras(args, std::slice::from_ref(&run))?;
     match &args.output {
-        Some(path) => report::write_atomic(path, &text)?,
-        None => emit(&text),
+        Some(path) => report::write_file(path, &text)?,
+        None => report::stdout(&text)?,
     }
     Ok(if j.outcome.pass { 0 } else { 1 })
 }
@@ -281,8 +274,8 @@ fn run_batch(args: &CheckArgs) -> Result<i32, Error> {
     }
     write_batch_extras(args, &runs)?;
     match &args.output {
-        Some(path) => report::write_atomic(path, &text)?,
-        None => emit(&text),
+        Some(path) => report::write_file(path, &text)?,
+        None => report::stdout(&text)?,
     }
     Ok(batch::Totals::of(&runs).exit_code())
 }

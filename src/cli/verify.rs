@@ -13,7 +13,8 @@ use coatcheck::contact::{Contact, Engine, Request, tau_exceedance, tau_peak};
 use coatcheck::layer::{Bilayer, Elastic, Stack};
 use coatcheck::prec::{Estimate, Settings, Termination};
 use coatcheck::psd::Spectrum;
-use coatcheck::topography::io::{MapOptions, read_height_map, write_atomic};
+use coatcheck::report::write_with;
+use coatcheck::topography::io::{MapOptions, read_height_map};
 use coatcheck::topography::spectrum::{PsdOptions, map_psd};
 use coatcheck::units::{Dim, parse_quantity};
 use coatcheck::verify::Verification;
@@ -231,7 +232,9 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
     let rows = rows(&sol, &fields, &theory, bond, above);
     let xi = surface.rms_slope();
     match a.format {
-        FormatArg::Table => print_table(&a, &surface, &stack, p0, xi, &sol, seconds, &rows),
+        FormatArg::Table => {
+            coatcheck::report::stdout(&table(&a, &surface, &stack, p0, xi, &sol, seconds, &rows))?
+        }
         FormatArg::Json => {
             let v = json!({
                 "map": a.map.display().to_string(),
@@ -266,10 +269,10 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
                     "exact": r.exact, "ratio": r.ratio(),
                 })).collect::<Vec<_>>(),
             });
-            println!(
-                "{}",
+            coatcheck::report::stdout(&format!(
+                "{}\n",
                 serde_json::to_string_pretty(&v).expect("a JSON value serialises")
-            );
+            ))?;
         }
     }
     if !converged {
@@ -380,7 +383,7 @@ fn rows(
 }
 
 #[allow(clippy::too_many_arguments)]
-fn print_table(
+fn table(
     a: &VerifyArgs,
     s: &Surface,
     stack: &Stack,
@@ -389,7 +392,7 @@ fn print_table(
     sol: &BemSolution,
     seconds: f64,
     rows: &[Row],
-) {
+) -> String {
     let mut scene = Table::new();
     scene.set_header(vec!["scene", "value"]);
     let l = stack.layers;
@@ -437,7 +440,6 @@ fn print_table(
             c.status, c.iterations, c.gap_rms_in_contact, c.max_penetration, c.tolerance
         ),
     ]);
-    println!("{scene}");
     let mut t = Table::new();
     t.set_header(vec![
         "quantity",
@@ -458,13 +460,12 @@ fn print_table(
             r.ratio().map_or("-".into(), |v| format!("{v:.3}")),
         ]);
     }
-    println!("{t}");
-    println!(
-        "A/A0 counts pixels in contact (±{:.1e} from the solver tolerance); refine the map to see \
+    format!(
+        "{scene}\n{t}\nA/A0 counts pixels in contact (±{:.1e} from the solver tolerance); refine the map to see \
          the discretisation error. Quantiles: contact pressure over the contact area, interface \
-         stresses over the whole interface.",
+         stresses over the whole interface.\n",
         sol.area_fraction.err
-    );
+    )
 }
 
 fn write_fields(
@@ -473,7 +474,7 @@ fn write_fields(
     sol: &BemSolution,
     f: &InterfaceFields,
 ) -> Result<(), Error> {
-    write_atomic(path, |w: &mut dyn Write| {
+    write_with(path, |w: &mut dyn Write| {
         writeln!(
             w,
             "x_m,y_m,height_m,pressure_pa,gap_m,sigma_n_interface_pa,tau_x_pa,tau_y_pa,tau_abs_pa"

@@ -15,6 +15,7 @@ mod golden;
 mod interface_ref;
 mod kernel_table;
 mod layer;
+mod output;
 mod psd_convert;
 mod psd_moments;
 mod psd_read;

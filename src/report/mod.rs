@@ -1,6 +1,6 @@
 //! Output of `coatcheck check`: human tables (comfy-table; MPa, µm, 4 significant digits), one
-//! JSON object, or CSV; and the thickness sweep (the paper's Fig. 7 as a table). Files are
-//! written atomically (a temporary file in the same directory, then renamed).
+//! JSON object, or CSV; and the thickness sweep (the paper's Fig. 7 as a table). Files and
+//! standard output are written by [`mod@write`].
 //!
 //! The JSON object carries the keys of issue 3 (`verdict`, `area_fraction`,
 //! `mean_contact_pressure_pa`, `sigma_rms_top_pa`, `sigma_rms_interface_pa`,
@@ -14,8 +14,9 @@ use crate::prec::Estimate;
 use crate::scene::{RoughnessSource, Scale, Scene};
 use comfy_table::{Table, presets::UTF8_FULL_CONDENSED};
 use serde_json::{Map, Value, json};
-use std::io::Write;
-use std::path::Path;
+
+pub mod write;
+pub use write::{is_broken_pipe, stdout, write_file, write_with};
 
 /// Output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -574,24 +575,6 @@ pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
     }
 }
 
-/// Write `contents` to `path` atomically: a temporary file in the same directory, renamed over
-/// the target only when complete.
-pub fn write_atomic(path: &Path, contents: &str) -> Result<(), Error> {
-    let io = |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
-    tmp.write_all(contents.as_bytes()).map_err(io)?;
-    tmp.as_file().sync_all().map_err(io)?;
-    tmp.persist(path).map_err(|e| io(e.error))?;
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -608,17 +591,5 @@ mod tests {
         assert_eq!(sig(9.999999, 4), "10.00");
         assert_eq!(sig(-0.00099996, 4), "-0.001000");
         assert_eq!(sig(0.00099996, 3), "0.00100");
-    }
-
-    #[test]
-    fn atomic_write_replaces_the_file_and_leaves_no_temporaries() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("out.json");
-        std::fs::write(&p, "old").unwrap();
-        write_atomic(&p, "new").unwrap();
-        assert_eq!(std::fs::read_to_string(&p).unwrap(), "new");
-        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
-        let missing = dir.path().join("no/such/dir/out.json");
-        assert!(write_atomic(&missing, "x").is_err());
     }
 }
