@@ -10,11 +10,16 @@
 
 use crate::check::{CheckKind, CheckResult, Evaluation, Outcome};
 use crate::error::Error;
+use crate::pipeline::Judged;
 use crate::prec::Estimate;
 use crate::scene::{RoughnessSource, Scale, Scene};
 use comfy_table::{Table, presets::UTF8_FULL_CONDENSED};
 use serde_json::{Map, Value, json};
 
+pub mod batch;
+pub mod junit;
+pub mod parquet;
+pub mod verify;
 pub mod write;
 pub use write::{is_broken_pipe, stdout, write_file, write_with};
 
@@ -313,6 +318,53 @@ pub fn human(scene: &Scene, outcome: &Outcome) -> String {
         out += &format!("warning: {w}\n");
     }
     out
+}
+
+/// The report of one judged scene: the check's tables, JSON or CSV, with the per-file verdicts
+/// when the scene lists several roughness files, and the exact section of `check --verify`.
+pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
+    let (scene, outcome) = (&j.scene, &j.outcome);
+    let ev = &outcome.evaluation;
+    let verdict = if j.pass() { "pass" } else { "fail" };
+    let several = !j.files.is_empty();
+    Ok(match format {
+        Format::Table => {
+            let mut t = format!("{}{}", batch::files_table(j), human(scene, outcome));
+            if let Some(x) = &j.exact {
+                t += &format!("\n{}", verify::check_table(&x.map, ev, &x.verification));
+            }
+            t
+        }
+        Format::Json => {
+            let mut v = json(scene, outcome);
+            if several {
+                let worst = j.worst_file().map(|p| p.display().to_string());
+                v["worst_file"] = json!(worst);
+                v["files"] = json!(j.files);
+                v["warnings"] = json!(j.warnings);
+            }
+            if let (Some(x), Some(o)) = (&j.exact, v.as_object_mut()) {
+                o.insert(
+                    "verify".into(),
+                    verify::check_json(&x.map, ev, &x.verification),
+                );
+                o.insert("verdict_with_verify".into(), verdict.into());
+            }
+            format!("{v:#}\n")
+        }
+        Format::Csv => {
+            let mut c = csv(scene, outcome)?;
+            if several {
+                let worst = j.worst_file().map(|p| p.display().to_string());
+                c += &format!("worst_file,{},,\n", worst.unwrap_or_default());
+            }
+            if let Some(x) = &j.exact {
+                c += &verify::check_csv(ev, &x.verification);
+                c += &format!("verdict_with_verify,{verdict},,\n");
+            }
+            c
+        }
+    })
 }
 
 fn put(m: &mut Map<String, Value>, key: &str, e: Option<Estimate>) {

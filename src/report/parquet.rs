@@ -2,7 +2,7 @@
 //! (the project's chosen dataframe library) behind the opt-in cargo feature `parquet`. The
 //! default build has no polars; there `--parquet` is refused before anything runs.
 //!
-//! Columns: a batch has one row per scene with the columns of [`crate::batch::COLUMNS`] (SI
+//! Columns: a batch has one row per scene with the columns of [`crate::report::batch::COLUMNS`] (SI
 //! units; text, f64 and u64 columns, nulls where a value does not apply); a sweep has one row
 //! per thickness: `thickness_m`, the sweep quantities of `report::sweep` and `<check>_pass` for
 //! the stress checks. Files are written by [`mod@crate::report::write`].
@@ -26,8 +26,8 @@ pub fn unavailable() -> Error {
 #[cfg(feature = "parquet")]
 mod imp {
     use super::*;
-    use crate::batch::{COLUMNS, Cell, Record};
     use crate::check::CheckKind;
+    use crate::report::batch::{COLUMNS, Cell, Record};
     use polars::prelude::{Column, DataFrame, ParquetWriter};
 
     /// One column's values.
