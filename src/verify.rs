@@ -27,7 +27,7 @@
 //! The minimum thickness is not verified (it would need a solve per thickness).
 
 use crate::bem::{self, BemSettings, BemSolution, Convergence, InterfaceFields, Surface};
-use crate::check::{CheckKind, Design, Evaluation};
+use crate::check::{CheckKind, Design, Evaluation, criteria};
 use crate::contact::{Contact, Engine, Request, tau_exceedance, tau_peak};
 use crate::error::Error;
 use crate::layer::Stack;
@@ -239,8 +239,8 @@ pub fn verify(
             kind,
             value,
             limit,
-            margin: 1.0 - value.value / limit,
-            pass: value.value <= limit,
+            margin: criteria::margin(value.value, limit),
+            pass: criteria::passes(value.value, limit),
             resolved,
         });
     };
@@ -248,19 +248,24 @@ pub fn verify(
         judge(
             CheckKind::BondShear,
             tau_peak.value,
-            design.bond_strength / sf,
+            criteria::limit(design.bond_strength, sf),
             tau_peak.resolved,
         );
     }
     if on.substrate_yield
         && let Some(y) = design.yield_strength
     {
-        let (value, resolved) = if sigma_peak_interface.value.value >= mean_contact_pressure.value {
-            (sigma_peak_interface.value, sigma_peak_interface.resolved)
-        } else {
-            (mean_contact_pressure, true)
-        };
-        judge(CheckKind::SubstrateYield, value, y / sf, resolved);
+        let (value, resolved) = criteria::yield_governing(
+            (sigma_peak_interface.value, sigma_peak_interface.resolved),
+            (mean_contact_pressure, true),
+            |(e, _): &(Estimate, bool)| e.value,
+        );
+        judge(
+            CheckKind::SubstrateYield,
+            value,
+            criteria::limit(y, sf),
+            resolved,
+        );
     }
     let pass = checks.iter().all(|c| c.pass);
     Ok(Verification {
