@@ -1,4 +1,5 @@
-//! The design check on the measured surface itself: the exact contact of the scene's film,
+//! The design check on the measured surface itself, and the comparison of Persson's estimate
+//! with the exact contact ([`compare`]): the exact contact of the scene's film,
 //! substrate and load on a height map (boundary elements, [`crate::bem`]), with the criteria of
 //! [`crate::check`] applied to the solved fields instead of Persson's Gaussian distributions
 //! (paper Appendix B; notes.md for the definitions).
@@ -25,11 +26,15 @@
 //! NaN error. The map is one period of a periodic surface, as `coatcheck verify` treats it.
 //! The minimum thickness is not verified (it would need a solve per thickness).
 
-use crate::bem::{self, BemSettings, Convergence, Surface};
-use crate::check::{CheckKind, Design};
+use crate::bem::{self, BemSettings, BemSolution, Convergence, InterfaceFields, Surface};
+use crate::check::{CheckKind, Design, Evaluation, criteria};
+use crate::contact::{Contact, Engine, Request, tau_exceedance, tau_peak};
 use crate::error::Error;
 use crate::layer::Stack;
-use crate::prec::{Estimate, Termination};
+use crate::prec::{Estimate, Settings, Termination};
+use crate::psd::Spectrum;
+use crate::topography::HeightMap;
+use crate::topography::spectrum::{PsdOptions, map_psd};
 use serde::Serialize;
 
 /// Smallest side (pixels) for which a half-resolution solve is made.
@@ -112,13 +117,14 @@ fn level(values: &mut [f64], eps: f64) -> (f64, bool) {
     (*v, eps * nf >= 1.0)
 }
 
-fn solve_one(
+/// The exact contact at nominal pressure `p0` and the interface fields under it. A solve that
+/// did not converge is an error (nothing is judged on it).
+pub fn solve(
     surface: &Surface,
     stack: &Stack,
-    design: &Design,
+    p0: f64,
     settings: &BemSettings,
-) -> Result<Solved, Error> {
-    let p0 = design.pressure;
+) -> Result<(BemSolution, InterfaceFields), Error> {
     let sol = bem::solve(surface, stack, p0, settings)?;
     let c = &sol.convergence;
     if c.status != Termination::Converged {
@@ -137,6 +143,17 @@ fn solve_one(
         });
     }
     let fields = bem::interface_fields(&sol, stack)?;
+    Ok((sol, fields))
+}
+
+fn solve_one(
+    surface: &Surface,
+    stack: &Stack,
+    design: &Design,
+    settings: &BemSettings,
+) -> Result<Solved, Error> {
+    let p0 = design.pressure;
+    let (sol, fields) = solve(surface, stack, p0, settings)?;
     let eps = design.criteria.epsilon;
     let mut tau: Vec<f64> = (0..fields.shear_x.len())
         .map(|i| fields.shear_magnitude(i))
@@ -222,8 +239,8 @@ pub fn verify(
             kind,
             value,
             limit,
-            margin: 1.0 - value.value / limit,
-            pass: value.value <= limit,
+            margin: criteria::margin(value.value, limit),
+            pass: criteria::passes(value.value, limit),
             resolved,
         });
     };
@@ -231,19 +248,24 @@ pub fn verify(
         judge(
             CheckKind::BondShear,
             tau_peak.value,
-            design.bond_strength / sf,
+            criteria::limit(design.bond_strength, sf),
             tau_peak.resolved,
         );
     }
     if on.substrate_yield
         && let Some(y) = design.yield_strength
     {
-        let (value, resolved) = if sigma_peak_interface.value.value >= mean_contact_pressure.value {
-            (sigma_peak_interface.value, sigma_peak_interface.resolved)
-        } else {
-            (mean_contact_pressure, true)
-        };
-        judge(CheckKind::SubstrateYield, value, y / sf, resolved);
+        let (value, resolved) = criteria::yield_governing(
+            (sigma_peak_interface.value, sigma_peak_interface.resolved),
+            (mean_contact_pressure, true),
+            |(e, _): &(Estimate, bool)| e.value,
+        );
+        judge(
+            CheckKind::SubstrateYield,
+            value,
+            criteria::limit(y, sf),
+            resolved,
+        );
     }
     let pass = checks.iter().all(|c| c.pass);
     Ok(Verification {
@@ -263,6 +285,244 @@ pub fn verify(
         convergence: fine.convergence,
         seconds: started.elapsed().as_secs_f64(),
     })
+}
+
+/// One quantity of the Persson-vs-exact comparison.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    pub name: String,
+    /// `Pa` or empty (dimensionless).
+    pub unit: &'static str,
+    /// Persson's prediction with its error, where the theory gives one.
+    pub persson: Option<Estimate>,
+    pub exact: f64,
+}
+
+impl Row {
+    fn new(
+        name: impl Into<String>,
+        unit: &'static str,
+        persson: Option<Estimate>,
+        exact: f64,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            unit,
+            persson,
+            exact,
+        }
+    }
+
+    /// exact / Persson (none where Persson has no value or it is 0).
+    pub fn ratio(&self) -> Option<f64> {
+        self.persson
+            .filter(|p| p.value != 0.0)
+            .map(|p| self.exact / p.value)
+    }
+}
+
+/// The exact contact on a height map beside Persson's estimate from the map's own spectrum.
+#[derive(Debug, Clone)]
+pub struct Comparison {
+    pub surface: Surface,
+    pub solution: BemSolution,
+    pub fields: InterfaceFields,
+    pub persson: Contact,
+    /// Fraction of the interface where |τ| exceeds the bond strength, when one is given.
+    pub above_bond: Option<f64>,
+    pub rows: Vec<Row>,
+    /// Wall time of the exact solve and its interface fields (s).
+    pub seconds: f64,
+}
+
+/// Persson's estimate on the map's own spectrum (periodic, no window, all wavelengths down to
+/// the Nyquist limit, as the boundary elements see them).
+pub fn persson(
+    map: &HeightMap,
+    stack: &Stack,
+    p0: f64,
+    settings: Settings,
+) -> Result<Contact, Error> {
+    let psd = map_psd(
+        map,
+        &PsdOptions {
+            cutoff_pixels: 2.0,
+            ..PsdOptions::default()
+        },
+    )?;
+    let engine = Engine::new(&Spectrum::Tabulated(psd.c2d), settings);
+    engine.evaluate(stack, p0, Request::all())
+}
+
+/// Solve the contact on `map` (one period of a periodic surface) at nominal pressure `p0` and
+/// compare it with Persson's estimate (contact integrals to `settings`).
+pub fn compare(
+    map: &HeightMap,
+    stack: &Stack,
+    p0: f64,
+    bem: &BemSettings,
+    settings: Settings,
+    bond: Option<f64>,
+) -> Result<Comparison, Error> {
+    let surface = Surface::from_height_map(map)?;
+    let started = std::time::Instant::now();
+    let (solution, fields) = solve(&surface, stack, p0, bem)?;
+    let seconds = started.elapsed().as_secs_f64();
+    let theory = persson(map, stack, p0, settings)?;
+    let above_bond = bond.map(|b| fields.shear_fraction_above(b));
+    let rows = comparison_rows(&solution, &fields, &theory, bond, above_bond);
+    Ok(Comparison {
+        surface,
+        solution,
+        fields,
+        persson: theory,
+        above_bond,
+        rows,
+        seconds,
+    })
+}
+
+/// The compared quantities: Persson's rms values, and his Gaussian quantiles of |τ| and the
+/// bond exceedance (errors propagated to first order from τ_rms's), against the field's.
+fn comparison_rows(
+    sol: &BemSolution,
+    fields: &InterfaceFields,
+    theory: &Contact,
+    bond: Option<f64>,
+    above: Option<f64>,
+) -> Vec<Row> {
+    let tau_rms = theory.tau_rms_interface;
+    let area = theory.area_fraction;
+    let mut rows = vec![
+        Row::new("A/A0", "", Some(area), sol.area_fraction.value),
+        Row::new(
+            "sigma_rms top",
+            "Pa",
+            theory.sigma_rms_top,
+            sol.sigma_rms_top,
+        ),
+        Row::new(
+            "sigma_rms interface",
+            "Pa",
+            theory.sigma_rms_interface,
+            fields.normal_stats.rms_dev,
+        ),
+        Row::new("tau_rms interface", "Pa", tau_rms, fields.shear_stats.rms),
+        Row::new(
+            "contact pressure mean",
+            "Pa",
+            Some(area.map(|a| sol.p0 / a, |a| sol.p0 / (a * a))),
+            sol.contact_pressure.mean,
+        ),
+    ];
+    let exact_only = |rows: &mut Vec<Row>, name: &str, s: &bem::FieldStats| {
+        for q in &s.quantiles {
+            rows.push(Row::new(format!("{name} q{}", q.prob), "Pa", None, q.value));
+        }
+        rows.push(Row::new(format!("{name} max"), "Pa", None, s.max));
+    };
+    exact_only(&mut rows, "contact pressure", &sol.contact_pressure);
+    exact_only(&mut rows, "interface sigma_n", &fields.normal_stats);
+    for q in &fields.shear_stats.quantiles {
+        // Persson: |τ| half-normal with rms τ_rms, so the quantile at P is τ_peak(ε = 1 − P).
+        let k = tau_peak(1.0, 1.0 - q.prob);
+        let p = tau_rms.map(|t| t.map(|t| k * t, |_| k));
+        rows.push(Row::new(
+            format!("interface |tau| q{}", q.prob),
+            "Pa",
+            p,
+            q.value,
+        ));
+    }
+    rows.push(Row::new(
+        "interface |tau| max",
+        "Pa",
+        None,
+        fields.shear_stats.max,
+    ));
+    if let (Some(b), Some(f)) = (bond, above) {
+        rows.push(Row::new(
+            "area fraction |tau| > bond",
+            "",
+            tau_rms.map(|t| Estimate {
+                value: tau_exceedance(t.value, b),
+                err: (tau_exceedance(t.value + t.err, b) - tau_exceedance(t.value, b)).abs(),
+                status: t.status,
+            }),
+            f,
+        ));
+    }
+    rows
+}
+
+/// One quantity of `check --verify`: Persson's value beside the exact one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CheckRow {
+    pub name: &'static str,
+    /// Report key; stresses end in `_pa`.
+    pub key: &'static str,
+    pub persson: Option<Estimate>,
+    pub exact: Estimate,
+}
+
+/// Persson's evaluation and the exact one side by side, for `check --verify`.
+pub fn check_rows(ev: &Evaluation, v: &Verification) -> Vec<CheckRow> {
+    let c = &ev.contact;
+    let row = |name, key, persson, exact| CheckRow {
+        name,
+        key,
+        persson,
+        exact,
+    };
+    vec![
+        row(
+            "A/A0",
+            "area_fraction",
+            Some(c.area_fraction),
+            v.area_fraction,
+        ),
+        row(
+            "mean contact pressure",
+            "mean_contact_pressure_pa",
+            Some(ev.mean_contact_pressure),
+            v.mean_contact_pressure,
+        ),
+        row(
+            "sigma_rms top",
+            "sigma_rms_top_pa",
+            c.sigma_rms_top,
+            v.sigma_rms_top,
+        ),
+        row(
+            "sigma_rms interface",
+            "sigma_rms_interface_pa",
+            c.sigma_rms_interface,
+            v.sigma_rms_interface,
+        ),
+        row(
+            "tau_rms interface",
+            "tau_rms_interface_pa",
+            c.tau_rms_interface,
+            v.tau_rms_interface,
+        ),
+        row("tau_peak", "tau_peak_pa", ev.tau_peak, v.tau_peak.value),
+        row(
+            "sigma_peak interface",
+            "sigma_peak_interface_pa",
+            ev.sigma_peak_interface,
+            v.sigma_peak_interface.value,
+        ),
+        row(
+            "P(|tau| > bond strength)",
+            "bond_exceedance",
+            ev.bond_exceedance.map(|p| Estimate {
+                value: p,
+                err: 0.0,
+                status: Termination::Converged,
+            }),
+            v.bond_exceedance,
+        ),
+    ]
 }
 
 #[cfg(test)]

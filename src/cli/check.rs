@@ -1,14 +1,14 @@
 //! `coatcheck check`: judge one coating design (scene file and/or flags).
 
 use coatcheck::Error;
-use coatcheck::batch::{self, Judged, SceneRun};
+use coatcheck::batch::{self, SceneRun};
 use coatcheck::bem::BemSettings;
-use coatcheck::check::{Checker, Outcome, log_space};
+use coatcheck::check::log_space;
 use coatcheck::material::Library;
+use coatcheck::pipeline;
 use coatcheck::report::{self, Format};
 use coatcheck::scene::Scene;
 use coatcheck::units::{Dim, parse_quantity};
-use coatcheck::verify::verify;
 use std::path::PathBuf;
 
 pub use super::check_args::CheckArgs;
@@ -48,8 +48,8 @@ fn parse_sweep(text: &str) -> Result<(f64, f64, usize), Error> {
 
 /// Run the check; the exit code is 0 (pass) or 1 (fail).
 pub fn run(args: CheckArgs) -> Result<i32, Error> {
-    if args.parquet.is_some() && !coatcheck::parquet::AVAILABLE {
-        return Err(coatcheck::parquet::unavailable());
+    if args.parquet.is_some() && !report::parquet::AVAILABLE {
+        return Err(report::parquet::unavailable());
     }
     if is_batch(&args) {
         return run_batch(&args);
@@ -64,135 +64,45 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
     if let Some(w) = scene.version_warning() {
         eprintln!("coatcheck: warning: {w}");
     }
-    if !scene.roughness.more_files.is_empty() {
-        return run_files(&args, &scene, sweep.is_some());
-    }
-    let (spectrum, read_warnings) = scene.roughness.spectrum()?;
-    for w in &read_warnings {
-        eprintln!("coatcheck: warning: {w}");
-    }
-    let checker = Checker::new(&spectrum, scene.design(), scene.settings)?;
-    let (text, code) = if let Some((from, to, n)) = sweep {
-        let rows = checker.sweep(&log_space(from, to, n))?;
-        if let Some(path) = &args.parquet {
-            coatcheck::parquet::write_sweep(path, &rows)?;
+    let several = !scene.roughness.more_files.is_empty();
+    let (text, code) = match sweep {
+        Some(range) => (run_sweep(&args, &scene, range)?, 0),
+        None => {
+            let exact = args.verify.then(BemSettings::default);
+            let started = std::time::Instant::now();
+            let judged = pipeline::judge(&scene, exact.as_ref())?;
+            if !several {
+                for w in &judged.read_warnings {
+                    eprintln!("coatcheck: warning: {w}");
+                }
+            }
+            let run = SceneRun {
+                file: scene.file.clone().unwrap_or_else(|| PathBuf::from("scene")),
+                seconds: if several {
+                    started.elapsed().as_secs_f64()
+                } else {
+                    0.0
+                },
+                result: Ok(judged),
+            };
+            write_extras(&args, std::slice::from_ref(&run))?;
+            let Ok(j) = &run.result else {
+                unreachable!("judged above")
+            };
+            (report::scene(j, args.format)?, if j.pass() { 0 } else { 1 })
         }
-        (report::sweep(&rows, args.format)?, 0)
-    } else {
-        let thickness = scene.thickness.ok_or_else(|| Error::Value {
-            origin: scene
-                .file
-                .as_ref()
-                .map_or("scene".into(), |p| p.display().to_string()),
-            msg: "film.thickness is missing; give the film thickness (thickness = \"10 um\" under [film], or --thickness 10um)".into(),
-        })?;
-        let outcome = checker.run(thickness)?;
-        write_single_extras(&args, &scene, &outcome)?;
-        let exact = if args.verify {
-            let (map, surface) = super::verify::scene_map(&scene)?;
-            let v = verify(
-                &surface,
-                checker.design(),
-                thickness,
-                &BemSettings::default(),
-            )?;
-            Some((map, v))
-        } else {
-            None
-        };
-        let pass = outcome.pass && exact.as_ref().is_none_or(|(_, v)| v.pass);
-        let ev = &outcome.evaluation;
-        let text = match args.format {
-            Format::Table => {
-                let mut t = report::human(&scene, &outcome);
-                if let Some((map, v)) = &exact {
-                    t += &format!("\n{}", super::verify::check_table(map, ev, v));
-                }
-                t
-            }
-            Format::Json => {
-                let mut j = report::json(&scene, &outcome);
-                if let (Some((map, v)), Some(o)) = (&exact, j.as_object_mut()) {
-                    o.insert("verify".into(), super::verify::check_json(map, ev, v));
-                    o.insert(
-                        "verdict_with_verify".into(),
-                        (if pass { "pass" } else { "fail" }).into(),
-                    );
-                }
-                format!("{j:#}\n")
-            }
-            Format::Csv => {
-                let mut c = report::csv(&scene, &outcome)?;
-                if let Some((_, v)) = &exact {
-                    c += &super::verify::check_csv(ev, v);
-                    c += &format!(
-                        "verdict_with_verify,{},,\n",
-                        if pass { "pass" } else { "fail" }
-                    );
-                }
-                c
-            }
-        };
-        (text, if pass { 0 } else { 1 })
     };
-    match &args.output {
-        Some(path) => report::write_atomic(path, &text)?,
-        None => emit(&text),
-    }
+    output(&args, &text)?;
     Ok(code)
 }
 
-/// Print to standard output; a closed pipe (e.g. `| head`) is not an error.
-pub fn emit(text: &str) {
-    use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
-}
-
-/// Several scenes, or a directory: a batch.
-fn is_batch(args: &CheckArgs) -> bool {
-    !args.more_scenes.is_empty() || args.scene.as_ref().is_some_and(|p| p.is_dir())
-}
-
-/// `--junit` and `--parquet` for one scene: a batch of one.
-fn write_single_extras(args: &CheckArgs, scene: &Scene, outcome: &Outcome) -> Result<(), Error> {
-    if args.junit.is_none() && args.parquet.is_none() {
-        return Ok(());
-    }
-    let run = SceneRun {
-        file: scene.file.clone().unwrap_or_else(|| PathBuf::from("scene")),
-        seconds: 0.0,
-        result: Ok(Judged {
-            scene: scene.clone(),
-            outcome: outcome.clone(),
-            files: Vec::new(),
-            warnings: outcome.warnings.clone(),
-        }),
-    };
-    write_batch_extras(args, std::slice::from_ref(&run))
-}
-
-fn write_batch_extras(args: &CheckArgs, runs: &[SceneRun]) -> Result<(), Error> {
-    if let Some(path) = &args.junit {
-        report::write_atomic(path, &coatcheck::junit::report(runs)?)?;
-    }
-    if let Some(path) = &args.parquet {
-        coatcheck::parquet::write_batch(path, runs)?;
-    }
-    Ok(())
-}
-
-/// One scene that lists several roughness files: the detailed report of the worst file, after
-/// a table of every file's verdict.
-fn run_files(args: &CheckArgs, scene: &Scene, sweep: bool) -> Result<i32, Error> {
-    if args.verify {
-        return Err(Error::Value {
-            origin: "--verify".into(),
-            msg: "runs on one height map; this scene lists several (give one with --profile)"
-                .into(),
-        });
-    }
-    if sweep {
+/// The thickness sweep of a scene with one roughness file.
+fn run_sweep(
+    args: &CheckArgs,
+    scene: &Scene,
+    (from, to, n): (f64, f64, usize),
+) -> Result<String, Error> {
+    if !scene.roughness.more_files.is_empty() {
         return Err(Error::Value {
             origin: "--sweep-thickness".into(),
             msg: format!(
@@ -201,42 +111,39 @@ fn run_files(args: &CheckArgs, scene: &Scene, sweep: bool) -> Result<i32, Error>
             ),
         });
     }
-    let start = std::time::Instant::now();
-    let judged = batch::judge(scene)?;
-    let run = SceneRun {
-        file: scene.file.clone().unwrap_or_else(|| PathBuf::from("scene")),
-        seconds: start.elapsed().as_secs_f64(),
-        result: Ok(judged),
-    };
-    let Ok(j) = &run.result else {
-        unreachable!("judged above")
-    };
-    let worst = j.worst_file().map(|p| p.display().to_string());
-    let text = match args.format {
-        Format::Table => format!(
-            "{}{}",
-            batch::files_table(j),
-            report::human(&j.scene, &j.outcome)
-        ),
-        Format::Json => {
-            let mut v = report::json(&j.scene, &j.outcome);
-            v["worst_file"] = serde_json::json!(worst);
-            v["files"] = serde_json::json!(j.files);
-            v["warnings"] = serde_json::json!(j.warnings);
-            format!("{v:#}\n")
-        }
-        Format::Csv => {
-            let mut text = report::csv(&j.scene, &j.outcome)?;
-            text += &format!("worst_file,{},,\n", worst.unwrap_or_default());
-            text
-        }
-    };
-    write_batch_extras(args, std::slice::from_ref(&run))?;
-    match &args.output {
-        Some(path) => report::write_atomic(path, &text)?,
-        None => emit(&text),
+    let (checker, read_warnings) = pipeline::checker(scene)?;
+    for w in &read_warnings {
+        eprintln!("coatcheck: warning: {w}");
     }
-    Ok(if j.outcome.pass { 0 } else { 1 })
+    let rows = checker.sweep(&log_space(from, to, n))?;
+    if let Some(path) = &args.parquet {
+        report::parquet::write_sweep(path, &rows)?;
+    }
+    report::sweep(&rows, args.format)
+}
+
+/// The report to `--output` or standard output.
+fn output(args: &CheckArgs, text: &str) -> Result<(), Error> {
+    match &args.output {
+        Some(path) => report::write_file(path, text),
+        None => report::stdout(text),
+    }
+}
+
+/// Several scenes, or a directory: a batch.
+fn is_batch(args: &CheckArgs) -> bool {
+    !args.more_scenes.is_empty() || args.scene.as_ref().is_some_and(|p| p.is_dir())
+}
+
+/// `--junit` and `--parquet` (one scene is a batch of one).
+fn write_extras(args: &CheckArgs, runs: &[SceneRun]) -> Result<(), Error> {
+    if let Some(path) = &args.junit {
+        report::write_file(path, &report::junit::report(runs)?)?;
+    }
+    if let Some(path) = &args.parquet {
+        report::parquet::write_batch(path, runs)?;
+    }
+    Ok(())
 }
 
 /// Several scenes or a directory: judged in parallel, one summary (failures first), exit code
@@ -266,11 +173,7 @@ fn run_batch(args: &CheckArgs) -> Result<i32, Error> {
     let runs = batch::run_all(&files, &args.overrides(), &library, &|| progress.inc(1));
     progress.finish_and_clear();
     let seconds = start.elapsed().as_secs_f64();
-    let text = match args.format {
-        Format::Table => batch::summary(&runs, seconds),
-        Format::Json => batch::json(&runs),
-        Format::Csv => batch::csv(&runs)?,
-    };
+    let text = report::batch::report(&runs, seconds, args.format)?;
     // The table lists the errors; other formats and files get them on standard error.
     if args.format != Format::Table || args.output.is_some() {
         for run in &runs {
@@ -279,11 +182,8 @@ fn run_batch(args: &CheckArgs) -> Result<i32, Error> {
             }
         }
     }
-    write_batch_extras(args, &runs)?;
-    match &args.output {
-        Some(path) => report::write_atomic(path, &text)?,
-        None => emit(&text),
-    }
+    write_extras(args, &runs)?;
+    output(args, &text)?;
     Ok(batch::Totals::of(&runs).exit_code())
 }
 

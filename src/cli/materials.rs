@@ -45,6 +45,6 @@ pub fn run(args: MaterialsArgs) -> Result<i32, Error> {
             ],
         });
     }
-    super::check::emit(&format!("{t}\n"));
+    coatcheck::report::stdout(&format!("{t}\n"))?;
     Ok(0)
 }

@@ -51,6 +51,8 @@ pub fn run() -> i32 {
     };
     match result {
         Ok(code) => code,
+        // The reader went away (`| head`): end quietly, as coreutils and ripgrep do.
+        Err(e) if coatcheck::report::is_broken_pipe(&e) => 0,
         Err(e) => {
             eprintln!("coatcheck: {e}");
             2

@@ -6,7 +6,7 @@
 
 use coatcheck::Error;
 use coatcheck::topography::convert::Conversion;
-use coatcheck::topography::io::{self, HeightKind};
+use coatcheck::topography::io::HeightKind;
 use coatcheck::topography::spectrum::{Detrend, PsdOptions, TopographyPsd, Window};
 use coatcheck::topography::{HeightFileOptions, psd_of_file};
 use coatcheck::units::{Dim, parse_quantity};
@@ -157,7 +157,7 @@ pub fn run(a: PsdArgs) -> Result<i32, Error> {
     let (kind, result) = psd_of_file(&a.file, &file, &opts)?;
     let input = a.file.display().to_string();
     if let Some(out) = &a.output {
-        io::write_atomic(out, |w| write_csv(w, &input, &result))?;
+        coatcheck::report::write_with(out, |w| write_csv(w, &input, &result))?;
     }
     let mut stdout = std::io::stdout().lock();
     let printed = match a.format {

@@ -96,7 +96,7 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
     let qd = parse_grid("--qd", &args.qd)?;
     let rows: Vec<(f64, coatcheck::layer::Response)> =
         qd.iter().map(|&x| (x, pair.response(x))).collect();
-    match args.format {
+    let text = match args.format {
         Format::Table => {
             let mut t = Table::new();
             t.load_preset(UTF8_FULL).set_header(["q·d", "S", "f", "g"]);
@@ -108,17 +108,17 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
                     format!("{:.10e}", r.g),
                 ]);
             }
-            println!("{t}");
-            println!(
-                "error estimate: relative {KERNEL_RTOL:e} for each of S, f, g (the bound verified \
-                 against a 100-digit solution over qd 1e-8..1e4, E0/E1 1e-8..1e8, nu 0..0.5)"
-            );
+            format!(
+                "{t}\nerror estimate: relative {KERNEL_RTOL:e} for each of S, f, g (the bound \
+                 verified against a 100-digit solution over qd 1e-8..1e4, E0/E1 1e-8..1e8, nu \
+                 0..0.5)\n"
+            )
         }
         Format::Csv => {
-            println!("qd,S,S_err,f,f_err,g,g_err");
+            let mut text = String::from("qd,S,S_err,f,f_err,g,g_err\n");
             for (x, r) in &rows {
-                println!(
-                    "{x:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+                text += &format!(
+                    "{x:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
                     r.s,
                     err(r.s),
                     r.f,
@@ -127,6 +127,7 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
                     err(r.g)
                 );
             }
+            text
         }
         Format::Json => {
             let v: Vec<serde_json::Value> = rows
@@ -138,11 +139,12 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
                     })
                 })
                 .collect();
-            println!(
-                "{}",
+            format!(
+                "{}\n",
                 serde_json::to_string_pretty(&v).expect("plain numbers serialise")
-            );
+            )
         }
-    }
+    };
+    coatcheck::report::stdout(&text)?;
     Ok(0)
 }

@@ -125,13 +125,13 @@ pub fn run(a: SynthArgs) -> Result<i32, Error> {
             "the height map".to_string()
         }
     };
-    println!(
-        "wrote {what} a {} x {} map of {:e} m pixels (rms height {:e} m) to {}\n{note}",
+    coatcheck::report::stdout(&format!(
+        "wrote {what} a {} x {} map of {:e} m pixels (rms height {:e} m) to {}\n{note}\n",
         map.nx,
         map.ny,
         map.dx,
         map.rms(),
         a.output.display()
-    );
+    ))?;
     Ok(0)
 }

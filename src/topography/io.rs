@@ -22,8 +22,8 @@ use super::{HeightMap, Profile};
 use crate::error::Error;
 use crate::psd::read::{Sep, content_lines, decode_utf8, header_fields, name_and_unit};
 use crate::units::{Dim, parse_quantity, unit_scale};
-use std::io::{BufRead, BufReader, BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::io::{BufRead, BufReader};
+use std::path::Path;
 
 /// How to read line scans. Values are SI (m); units are strings like `um`.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -463,37 +463,9 @@ pub fn read_height_map(path: &Path, opts: &MapOptions) -> Result<HeightMap, Erro
     })
 }
 
-/// Write through a temporary file in the same directory, then rename over `path`.
-pub fn write_atomic(
-    path: &Path,
-    body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
-) -> Result<(), Error> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let tmp: PathBuf = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = (|| {
-        let f = std::fs::File::create(&tmp)?;
-        let mut w = BufWriter::new(f);
-        body(&mut w)?;
-        w.flush()?;
-        w.into_inner().map_err(|e| e.into_error())?.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    result.map_err(|source| {
-        let _ = std::fs::remove_file(&tmp);
-        io_err(path, source)
-    })
-}
-
 /// Write a height map (heights in m) with its metadata comment and optional extra comments.
 pub fn write_height_map(path: &Path, map: &HeightMap, comments: &[String]) -> Result<(), Error> {
-    write_atomic(path, |w| {
+    crate::report::write_with(path, |w| {
         writeln!(
             w,
             "# coatcheck height map: nx = {}, ny = {}, dx = {:e} m, dy = {:e} m, periodic = {}, z unit = m",
@@ -518,7 +490,7 @@ pub fn write_height_map(path: &Path, map: &HeightMap, comments: &[String]) -> Re
 
 /// Write line scans as `x (m), z1 (m), …` with the metadata comment.
 pub fn write_profile(path: &Path, p: &Profile, comments: &[String]) -> Result<(), Error> {
-    write_atomic(path, |w| {
+    crate::report::write_with(path, |w| {
         writeln!(
             w,
             "# coatcheck line scans: dx = {:e} m, periodic = {}, z unit = m",

@@ -10,8 +10,8 @@
 //! Failures found are kept below as plain regression tests.
 
 use coatcheck::Error;
-use coatcheck::batch::judge;
 use coatcheck::material::Library;
+use coatcheck::pipeline::judge;
 use coatcheck::psd::read::{ReadOptions, parse_spectrum};
 use coatcheck::scene::Scene;
 use coatcheck::units::{Dim, parse_quantity};
@@ -442,7 +442,7 @@ fn check_scene(text: &str) -> Result<(), TestCaseError> {
     if let Some(d) = scene.thickness {
         prop_assert!(d.is_finite() && d > 0.0);
     }
-    match judge(&scene) {
+    match judge(&scene, None) {
         Ok(j) => {
             let o = &j.outcome;
             prop_assert!(o.evaluation.contact.area_fraction.value.is_finite());
@@ -638,7 +638,7 @@ fn absurd_magnitudes_are_rejected_at_their_line() {
         .replace("rms_slope = 1\n", "");
     std::fs::write(&path, measured).unwrap();
     let scene = Scene::load(Some(&path), &[], library()).unwrap();
-    let e = judge(&scene).unwrap_err().to_string();
+    let e = judge(&scene, None).unwrap_err().to_string();
     assert!(
         e.contains("fuzz.toml:3: ") && e.contains("rms slope") && e.contains("s.csv"),
         "{e}"

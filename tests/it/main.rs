@@ -16,6 +16,7 @@ mod interface_ref;
 mod kernel_table;
 mod layer;
 mod levers;
+mod output;
 mod psd_convert;
 mod psd_moments;
 mod psd_read;

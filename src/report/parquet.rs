@@ -2,11 +2,10 @@
 //! (the project's chosen dataframe library) behind the opt-in cargo feature `parquet`. The
 //! default build has no polars; there `--parquet` is refused before anything runs.
 //!
-//! Columns: a batch has one row per scene with the columns of [`crate::batch::COLUMNS`] (SI
+//! Columns: a batch has one row per scene with the columns of [`crate::report::batch::COLUMNS`] (SI
 //! units; text, f64 and u64 columns, nulls where a value does not apply); a sweep has one row
 //! per thickness: `thickness_m`, the sweep quantities of `report::sweep` and `<check>_pass` for
-//! the stress checks. Files are written atomically (a temporary file in the same directory,
-//! renamed when complete).
+//! the stress checks. Files are written by [`mod@crate::report::write`].
 
 use crate::batch::SceneRun;
 use crate::check::Evaluation;
@@ -27,10 +26,9 @@ pub fn unavailable() -> Error {
 #[cfg(feature = "parquet")]
 mod imp {
     use super::*;
-    use crate::batch::{COLUMNS, Cell, Record};
     use crate::check::CheckKind;
+    use crate::report::batch::{COLUMNS, Cell, Record};
     use polars::prelude::{Column, DataFrame, ParquetWriter};
-    use std::io::Write;
 
     /// One column's values.
     enum Data {
@@ -69,22 +67,18 @@ mod imp {
 
     fn write(path: &Path, height: usize, columns: Vec<Column>) -> Result<(), Error> {
         let mut df = DataFrame::new(height, columns).map_err(|e| polars_error(path, e))?;
-        let io = |source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        };
-        let dir = match path.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        };
-        let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
-        ParquetWriter::new(tmp.as_file_mut())
-            .finish(&mut df)
-            .map_err(|e| polars_error(path, e))?;
-        tmp.as_file_mut().flush().map_err(io)?;
-        tmp.as_file().sync_all().map_err(io)?;
-        tmp.persist(path).map_err(|e| io(e.error))?;
-        Ok(())
+        let mut failure = None;
+        crate::report::write_with(path, |w| {
+            ParquetWriter::new(w)
+                .finish(&mut df)
+                .map(|_| ())
+                .map_err(|e| {
+                    let io = std::io::Error::other(e.to_string());
+                    failure = Some(e);
+                    io
+                })
+        })
+        .map_err(|e| failure.map_or(e, |f| polars_error(path, f)))
     }
 
     pub fn write_batch(path: &Path, runs: &[SceneRun]) -> Result<(), Error> {

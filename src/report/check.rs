@@ -1,62 +1,18 @@
-//! Output of `coatcheck check`: human tables (comfy-table; MPa, µm, 4 significant digits), one
-//! JSON object, or CSV; and the thickness sweep (the paper's Fig. 7 as a table). Files are
-//! written atomically (a temporary file in the same directory, then renamed).
+//! The report of one judged scene: human tables, one JSON object, or CSV.
 //!
-//! The JSON object carries the keys of issue 3 (`verdict`, `area_fraction`,
-//! `mean_contact_pressure_pa`, `sigma_rms_top_pa`, `sigma_rms_interface_pa`,
-//! `tau_rms_interface_pa`, `tau_peak_pa`, `sigma_peak_interface_pa`, `e_eff_over_e_film`,
-//! `min_thickness_m`, `governing_check`, `checks`), each numeric result with a sibling
-//! `<key>_err` (its numerical error estimate), plus the inputs and warnings.
+//! The JSON object carries `verdict`, `area_fraction`, `mean_contact_pressure_pa`,
+//! `sigma_rms_top_pa`, `sigma_rms_interface_pa`, `tau_rms_interface_pa`, `tau_peak_pa`,
+//! `sigma_peak_interface_pa`, `e_eff_over_e_film`, `min_thickness_m`, `governing_check` and
+//! `checks`, each numeric result with a sibling `<key>_err` (its numerical error estimate), plus
+//! the inputs and warnings.
 
-use crate::check::{CheckKind, CheckResult, Evaluation, Outcome};
+use super::{Format, batch, mpa, sig, table, um, verify};
+use crate::check::{CheckKind, CheckResult, Outcome};
 use crate::error::Error;
+use crate::pipeline::Judged;
 use crate::prec::Estimate;
 use crate::scene::{RoughnessSource, Scale, Scene};
-use comfy_table::{Table, presets::UTF8_FULL_CONDENSED};
 use serde_json::{Map, Value, json};
-use std::io::Write;
-use std::path::Path;
-
-/// Output format.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Format {
-    Table,
-    Json,
-    Csv,
-}
-
-/// `x` with `digits` significant digits: fixed notation for 1e-3 ≤ |x| < 1e6, else scientific.
-pub fn sig(x: f64, digits: usize) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x}");
-    }
-    // The exponent after rounding to `digits` (9.9999 → 10.00, not 10.000).
-    let e0 = x.abs().log10().floor() as i32;
-    let scale = 10f64.powi(digits as i32 - 1 - e0);
-    let rounded = (x * scale).round() / scale;
-    let e = rounded.abs().log10().floor() as i32;
-    if (-3..6).contains(&e) {
-        let decimals = (digits as i32 - 1 - e).max(0) as usize;
-        format!("{x:.decimals$}")
-    } else {
-        format!("{:.*e}", digits - 1, x)
-    }
-}
-
-fn mpa(pa: f64) -> String {
-    sig(pa * 1e-6, 4)
-}
-
-fn um(m: f64) -> String {
-    sig(m * 1e6, 4)
-}
-
-fn table(header: &[&str]) -> Table {
-    let mut t = Table::new();
-    t.load_preset(UTF8_FULL_CONDENSED);
-    t.set_header(header.iter().copied());
-    t
-}
 
 fn opt(e: Option<Estimate>, f: impl Fn(f64) -> String) -> (String, String) {
     match e {
@@ -314,6 +270,53 @@ pub fn human(scene: &Scene, outcome: &Outcome) -> String {
     out
 }
 
+/// The report of one judged scene: the check's tables, JSON or CSV, with the per-file verdicts
+/// when the scene lists several roughness files, and the exact section of `check --verify`.
+pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
+    let (scene, outcome) = (&j.scene, &j.outcome);
+    let ev = &outcome.evaluation;
+    let verdict = if j.pass() { "pass" } else { "fail" };
+    let several = !j.files.is_empty();
+    Ok(match format {
+        Format::Table => {
+            let mut t = format!("{}{}", batch::files_table(j), human(scene, outcome));
+            if let Some(x) = &j.exact {
+                t += &format!("\n{}", verify::check_table(&x.map, ev, &x.verification));
+            }
+            t
+        }
+        Format::Json => {
+            let mut v = json(scene, outcome);
+            if several {
+                let worst = j.worst_file().map(|p| p.display().to_string());
+                v["worst_file"] = json!(worst);
+                v["files"] = json!(j.files);
+                v["warnings"] = json!(j.warnings);
+            }
+            if let (Some(x), Some(o)) = (&j.exact, v.as_object_mut()) {
+                o.insert(
+                    "verify".into(),
+                    verify::check_json(&x.map, ev, &x.verification),
+                );
+                o.insert("verdict_with_verify".into(), verdict.into());
+            }
+            format!("{v:#}\n")
+        }
+        Format::Csv => {
+            let mut c = csv(scene, outcome)?;
+            if several {
+                let worst = j.worst_file().map(|p| p.display().to_string());
+                c += &format!("worst_file,{},,\n", worst.unwrap_or_default());
+            }
+            if let Some(x) = &j.exact {
+                c += &verify::check_csv(ev, &x.verification);
+                c += &format!("verdict_with_verify,{verdict},,\n");
+            }
+            c
+        }
+    })
+}
+
 fn put(m: &mut Map<String, Value>, key: &str, e: Option<Estimate>) {
     m.insert(key.into(), json!(e.map(|e| e.value)));
     m.insert(format!("{key}_err"), json!(e.map(|e| e.err)));
@@ -467,158 +470,4 @@ pub fn csv(scene: &Scene, outcome: &Outcome) -> Result<String, Error> {
         detail: e.to_string(),
     })?;
     Ok(String::from_utf8_lossy(&bytes).into_owned())
-}
-
-/// The sweep columns: (header, unit scale to SI, getter).
-pub type Getter = fn(&Evaluation) -> Option<f64>;
-pub const SWEEP: &[(&str, &str, Getter)] = &[
-    ("A/A0", "area_fraction", |e| {
-        Some(e.contact.area_fraction.value)
-    }),
-    ("E_eff/E_film", "e_eff_over_e_film", |e| {
-        e.contact.e_eff_over_e_film.map(|x| x.value)
-    }),
-    ("p_mean [MPa]", "mean_contact_pressure_pa", |e| {
-        Some(e.mean_contact_pressure.value)
-    }),
-    ("sigma_rms top [MPa]", "sigma_rms_top_pa", |e| {
-        e.contact.sigma_rms_top.map(|x| x.value)
-    }),
-    ("sigma_rms int [MPa]", "sigma_rms_interface_pa", |e| {
-        e.contact.sigma_rms_interface.map(|x| x.value)
-    }),
-    ("sigma_peak int [MPa]", "sigma_peak_interface_pa", |e| {
-        e.sigma_peak_interface.map(|x| x.value)
-    }),
-    ("tau_rms [MPa]", "tau_rms_interface_pa", |e| {
-        e.contact.tau_rms_interface.map(|x| x.value)
-    }),
-    ("tau_peak [MPa]", "tau_peak_pa", |e| {
-        e.tau_peak.map(|x| x.value)
-    }),
-];
-
-/// The thickness sweep in the chosen format.
-pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
-    let pressure_col = |h: &str| h.contains("MPa");
-    match format {
-        Format::Table => {
-            let mut head = vec!["d [um]"];
-            head.extend(SWEEP.iter().map(|(h, _, _)| *h));
-            head.push("checks");
-            let mut t = table(&head);
-            for ev in rows {
-                let mut cells = vec![um(ev.contact.thickness)];
-                for (h, _, get) in SWEEP {
-                    cells.push(match get(ev) {
-                        Some(x) if pressure_col(h) => mpa(x),
-                        Some(x) => sig(x, 4),
-                        None => "-".into(),
-                    });
-                }
-                cells.push(
-                    ev.checks
-                        .iter()
-                        .map(|c| {
-                            format!("{} {}", c.kind.name(), if c.pass { "PASS" } else { "FAIL" })
-                        })
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                );
-                t.add_row(cells);
-            }
-            Ok(format!("{t}\n"))
-        }
-        Format::Json => {
-            let list: Vec<Value> = rows
-                .iter()
-                .map(|ev| {
-                    let mut m = Map::new();
-                    m.insert("thickness_m".into(), json!(ev.contact.thickness));
-                    for (_, key, get) in SWEEP {
-                        m.insert((*key).into(), json!(get(ev)));
-                    }
-                    let checks: Vec<Value> = ev
-                        .checks
-                        .iter()
-                        .map(|c| json!({"name": c.kind.name(), "value": c.value.value, "limit": c.limit, "pass": c.pass}))
-                        .collect();
-                    m.insert("checks".into(), Value::Array(checks));
-                    Value::Object(m)
-                })
-                .collect();
-            Ok(format!("{:#}\n", json!({ "sweep": list })))
-        }
-        Format::Csv => {
-            let mut w = csv::Writer::from_writer(Vec::new());
-            let ser = |e: csv::Error| Error::Numerical {
-                what: "CSV output",
-                detail: e.to_string(),
-            };
-            let mut head = vec!["thickness_m".to_string()];
-            head.extend(SWEEP.iter().map(|(_, k, _)| k.to_string()));
-            w.write_record(&head).map_err(ser)?;
-            for ev in rows {
-                let mut cells = vec![format!("{:e}", ev.contact.thickness)];
-                for (_, _, get) in SWEEP {
-                    cells.push(get(ev).map(|x| format!("{x:e}")).unwrap_or_default());
-                }
-                w.write_record(&cells).map_err(ser)?;
-            }
-            let bytes = w.into_inner().map_err(|e| Error::Numerical {
-                what: "CSV output",
-                detail: e.to_string(),
-            })?;
-            Ok(String::from_utf8_lossy(&bytes).into_owned())
-        }
-    }
-}
-
-/// Write `contents` to `path` atomically: a temporary file in the same directory, renamed over
-/// the target only when complete.
-pub fn write_atomic(path: &Path, contents: &str) -> Result<(), Error> {
-    let io = |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
-    tmp.write_all(contents.as_bytes()).map_err(io)?;
-    tmp.as_file().sync_all().map_err(io)?;
-    tmp.persist(path).map_err(|e| io(e.error))?;
-    Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn significant_digits() {
-        assert_eq!(sig(0.0927412, 4), "0.09274");
-        assert_eq!(sig(0.357, 4), "0.3570");
-        assert_eq!(sig(12.345678, 4), "12.35");
-        assert_eq!(sig(1234.6, 4), "1235");
-        assert_eq!(sig(2.5e-7, 3), "2.50e-7");
-        assert_eq!(sig(3e8, 4), "3.000e8");
-        assert_eq!(sig(0.0, 4), "0");
-        assert_eq!(sig(9.999999, 4), "10.00");
-        assert_eq!(sig(-0.00099996, 4), "-0.001000");
-        assert_eq!(sig(0.00099996, 3), "0.00100");
-    }
-
-    #[test]
-    fn atomic_write_replaces_the_file_and_leaves_no_temporaries() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("out.json");
-        std::fs::write(&p, "old").unwrap();
-        write_atomic(&p, "new").unwrap();
-        assert_eq!(std::fs::read_to_string(&p).unwrap(), "new");
-        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
-        let missing = dir.path().join("no/such/dir/out.json");
-        assert!(write_atomic(&missing, "x").is_err());
-    }
 }

@@ -1,4 +1,4 @@
-//! JUnit XML of a batch (issue 7), for CI systems that display test reports natively. Written
+//! JUnit XML of a batch, for CI systems that display test reports natively. Written
 //! with `quick-junit` (the serializer cargo-nextest uses: escaping, counts and the Jenkins
 //! schema handled there).
 //!
@@ -9,10 +9,10 @@
 //! name="evaluate">` with an `<error>` carrying the message (file and line). Warnings go to the
 //! suite's `<system-out>`.
 
+use super::sig;
 use crate::batch::SceneRun;
 use crate::check::{CheckKind, CheckResult};
 use crate::error::Error;
-use crate::report::sig;
 use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
 use std::time::Duration;
 

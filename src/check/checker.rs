@@ -1,0 +1,360 @@
+//! [`Checker`]: one spectrum and one design; the quantities and stress checks at a thickness
+//! (eqs. B8–B12), the outcome with its validity warnings, the sweep, and the utilisation that
+//! the minimum-thickness search ([`super::min_thickness`]) runs on.
+
+use super::criteria::{limit, upper_check, yield_governing};
+use super::*;
+use crate::contact::{self, Engine, NormalStress, Request};
+use crate::error::Error;
+use crate::layer::Stack;
+use crate::prec::{Settings, Termination};
+use crate::psd::Spectrum;
+use rayon::prelude::*;
+
+/// One spectrum and one design, with the engine's d-independent precomputation.
+pub struct Checker {
+    engine: Engine,
+    /// The engine of the d_min search, at [`crate::prec::SEARCH_RTOL`] (or the scene's rtol if
+    /// looser): d_min is wanted to [`D_MIN_RTOL`], and the utilisation's error enters its
+    /// estimate.
+    search: Engine,
+    design: Design,
+    q_low: f64,
+    q_high: f64,
+    /// Rms slope ξ of the spectrum.
+    rms_slope: f64,
+}
+
+impl Checker {
+    pub fn new(spectrum: &Spectrum, design: Design, settings: Settings) -> Result<Self, Error> {
+        let c = &design.criteria;
+        if !(c.epsilon.is_finite() && c.epsilon > 0.0 && c.epsilon < 1.0) {
+            return Err(Error::invalid("epsilon", c.epsilon, "0 < epsilon < 1"));
+        }
+        if !(c.safety_factor.is_finite() && c.safety_factor > 0.0) {
+            return Err(Error::invalid(
+                "safety factor",
+                c.safety_factor,
+                "a finite factor > 0",
+            ));
+        }
+        if !(design.pressure.is_finite() && design.pressure > 0.0) {
+            return Err(Error::invalid(
+                "pressure",
+                design.pressure,
+                "a finite nominal pressure > 0 in Pa",
+            ));
+        }
+        if !(design.bond_strength.is_finite() && design.bond_strength > 0.0) {
+            return Err(Error::invalid(
+                "bond shear strength",
+                design.bond_strength,
+                "a finite strength > 0 in Pa",
+            ));
+        }
+        if c.checks.substrate_yield && design.yield_strength.is_none() {
+            return Err(Error::invalid(
+                "substrate",
+                "no yield strength",
+                "a substrate yield_strength for the substrate-yield check",
+            ));
+        }
+        let (q_low, q_high) = spectrum.support();
+        let engine = Engine::new(spectrum, settings);
+        // The search engine shares the design engine's grids where they coincide, and its
+        // kernel tables.
+        let search = engine.sibling(Settings {
+            rtol: settings.rtol.max(crate::prec::SEARCH_RTOL),
+        });
+        Ok(Self {
+            engine,
+            search,
+            design,
+            q_low,
+            q_high,
+            rms_slope: spectrum.slope_sq().value.sqrt(),
+        })
+    }
+
+    pub fn design(&self) -> &Design {
+        &self.design
+    }
+
+    fn stack(&self, thickness: f64) -> Result<Stack, Error> {
+        if !(thickness.is_finite() && thickness > 0.0) {
+            return Err(Error::invalid(
+                "thickness",
+                thickness,
+                "a finite film thickness > 0 in m",
+            ));
+        }
+        Ok(Stack {
+            layers: self.design.layers,
+            thickness,
+        })
+    }
+
+    fn limit(&self, strength: f64) -> f64 {
+        limit(strength, self.design.criteria.safety_factor)
+    }
+
+    /// Everything at one thickness: all engine quantities and the stress checks.
+    pub fn evaluate(&self, thickness: f64) -> Result<Evaluation, Error> {
+        let contact = self.engine.evaluate(
+            &self.stack(thickness)?,
+            self.design.pressure,
+            Request::all(),
+        )?;
+        self.assess(contact, true)
+    }
+
+    /// The stress checks from a contact result. With `extras`, also the exceedances of the
+    /// limits themselves (not needed while searching for d_min).
+    fn assess(&self, contact: Contact, extras: bool) -> Result<Evaluation, Error> {
+        let d = &self.design;
+        let eps = d.criteria.epsilon;
+        let p0 = d.pressure;
+        let area = contact.area_fraction;
+        if area.value.is_nan() || area.value <= 0.0 {
+            return Err(Error::Numerical {
+                what: "contact area",
+                detail: format!("A/A0 = {} at d = {} m", area.value, contact.thickness),
+            });
+        }
+        let mean_contact_pressure = area.map(|a| p0 / a, |a| p0 / (a * a));
+        let on = d.criteria.checks;
+        let mut checks = Vec::new();
+        let (mut tau_peak, mut bond_exceedance) = (None, None);
+        if let Some(tau) = contact.tau_rms_interface {
+            let k = contact::tau_peak(1.0, eps);
+            let peak = tau.map(|t| k * t, |_| k);
+            if on.bond_shear {
+                checks.push(upper_check(
+                    CheckKind::BondShear,
+                    peak,
+                    self.limit(d.bond_strength),
+                ));
+            }
+            tau_peak = Some(peak);
+            if extras {
+                bond_exceedance = Some(contact::tau_exceedance(tau.value, d.bond_strength));
+            }
+        }
+        let (mut sigma_peak_interface, mut yield_exceedance) = (None, None);
+        if let Some(sigma) = contact.sigma_rms_interface {
+            let at = |s: f64| NormalStress { p0, sigma_rms: s };
+            let mut peak = at(sigma.value).peak(eps);
+            peak.status = Estimate::worst(peak.status, sigma.status);
+            if extras {
+                // First-order propagation of σ_rms's error into the peak.
+                peak.err += (at(sigma.value + sigma.err).peak(eps).value - peak.value).abs();
+            }
+            if let Some(y) = d.yield_strength {
+                if on.substrate_yield {
+                    let governing =
+                        yield_governing(peak, mean_contact_pressure, |e: &Estimate| e.value);
+                    checks.push(upper_check(
+                        CheckKind::SubstrateYield,
+                        governing,
+                        self.limit(y),
+                    ));
+                }
+                if extras {
+                    yield_exceedance = Some(at(sigma.value).exceedance(y));
+                }
+            }
+            sigma_peak_interface = Some(peak);
+        }
+        Ok(Evaluation {
+            contact,
+            mean_contact_pressure,
+            tau_peak,
+            bond_exceedance,
+            sigma_peak_interface,
+            yield_exceedance,
+            checks,
+        })
+    }
+
+    /// Utilisation (value/limit, > 1 fails) of the enabled stress checks at `thickness`, with the
+    /// check that has the largest; only what those checks need is computed.
+    fn utilisation(&self, thickness: f64) -> Result<Utilisation, Error> {
+        let req = self.design.criteria.checks.request();
+        let contact = self
+            .search
+            .evaluate(&self.stack(thickness)?, self.design.pressure, req)?;
+        let ev = self.assess(contact, false)?;
+        let mut worst = Utilisation {
+            value: 0.0,
+            rel_err: 0.0,
+            kind: None,
+        };
+        for c in &ev.checks {
+            let u = c.value.value / c.limit.unwrap_or(f64::INFINITY);
+            if u > worst.value || worst.kind.is_none() {
+                worst = Utilisation {
+                    value: u,
+                    rel_err: c.value.err / c.value.value.abs(),
+                    kind: Some(c.kind),
+                };
+            }
+        }
+        Ok(worst)
+    }
+
+    /// The scan range [d_lo, d_hi] of the minimum-thickness search (module docs).
+    pub fn scan_range(&self) -> (f64, f64) {
+        let lo = (1e-6 / self.q_low).min(1e-4 / self.q_high).max(THINNEST);
+        let hi = BULK_QD / self.q_low;
+        (lo.min(hi), hi)
+    }
+
+    /// The smallest thickness above which every enabled stress check passes (module docs).
+    pub fn min_thickness(&self) -> Result<MinThickness, Error> {
+        let (lo, hi) = self.scan_range();
+        search_min_thickness(lo, hi, |d| self.utilisation(d))
+    }
+
+    /// The full check at the design's thickness: all quantities, the enabled checks, d_min.
+    pub fn run(&self, thickness: f64) -> Result<Outcome, Error> {
+        let evaluation = self.evaluate(thickness)?;
+        let checks_on = self.design.criteria.checks;
+        let min_thickness = if checks_on.min_thickness {
+            Some(self.min_thickness()?)
+        } else {
+            None
+        };
+        let mut checks = evaluation.checks.clone();
+        let mut warnings = Vec::new();
+        if let Some(m) = &min_thickness {
+            let value = Estimate::exact(thickness);
+            checks.push(match m.thickness {
+                Some(dm) => {
+                    let pass = thickness >= dm.value;
+                    CheckResult {
+                        kind: CheckKind::MinThickness,
+                        value,
+                        limit: Some(dm.value),
+                        margin: Some(1.0 - dm.value / thickness),
+                        pass,
+                        undecided: (thickness - dm.value).abs() <= dm.err,
+                    }
+                }
+                None => CheckResult {
+                    kind: CheckKind::MinThickness,
+                    value,
+                    limit: None,
+                    margin: None,
+                    pass: false,
+                    undecided: false,
+                },
+            });
+            if m.thickness.is_none() {
+                warnings.push(
+                    "no film thickness passes: even a bulk film fails the enabled checks".into(),
+                );
+            } else if m.all_pass_to_floor {
+                warnings.push(format!(
+                    "every thickness down to the scan floor {:.3e} m passes; d_min is reported as that floor",
+                    m.floor
+                ));
+            }
+        }
+        for c in &checks {
+            if c.undecided {
+                warnings.push(format!(
+                    "{}: the value is within its numerical error of the limit; the verdict is fragile",
+                    c.kind.name()
+                ));
+            }
+            if c.value.status == Termination::ToleranceNotReached {
+                warnings.push(format!(
+                    "{}: the requested tolerance was not reached (error estimate {:.2e})",
+                    c.kind.name(),
+                    c.value.err
+                ));
+            }
+        }
+        warnings.extend(self.validity_warnings(&evaluation.contact, thickness));
+        // No NaN or infinity reaches a verdict: a non-finite value is a numerical failure.
+        if let Some(c) = checks.iter().find(|c| {
+            !(c.value.value.is_finite() && c.value.err.is_finite())
+                || c.margin.is_some_and(|m| !m.is_finite())
+        }) {
+            return Err(Error::Numerical {
+                what: "design check",
+                detail: format!(
+                    "{}: value {:e} ± {:e}, margin {:?} at d = {thickness:e} m",
+                    c.kind.name(),
+                    c.value.value,
+                    c.value.err,
+                    c.margin
+                ),
+            });
+        }
+        let pass = checks.iter().all(|c| c.pass);
+        let governing = checks
+            .iter()
+            .min_by(|a, b| {
+                let ma = a.margin.unwrap_or(f64::NEG_INFINITY);
+                let mb = b.margin.unwrap_or(f64::NEG_INFINITY);
+                ma.total_cmp(&mb)
+            })
+            .map(|c| c.kind);
+        Ok(Outcome {
+            thickness,
+            evaluation,
+            min_thickness,
+            checks,
+            pass,
+            governing,
+            warnings,
+        })
+    }
+
+    /// Where the theory's assumptions are strained (module docs, "Validity"): few long waves
+    /// carrying the contact, near-full contact, slopes outside small-slope elasticity.
+    fn validity_warnings(&self, c: &Contact, thickness: f64) -> Vec<String> {
+        let mut w = Vec::new();
+        if self.q_high > 2.0 * self.q_low && c.low_octave_share > LOW_OCTAVE_WARN {
+            w.push(format!(
+                "{:.0} % of G(q1) (the contact stress variance) comes from the lowest octave of the \
+                 spectrum (q_L d = {:.3}): a few long waves carry the contact, where Persson's theory \
+                 under-estimates the contact area (exact solutions: 2x at q_L d = 0.3, 10x or more \
+                 at q_L d <= 0.1), so the contact-pressure figures (mean pressure in contact, \
+                 sigma peaks) are conservative; the result also depends on where the data start \
+                 (q_min); check with --verify on a height map",
+                100.0 * c.low_octave_share,
+                self.q_low * thickness
+            ));
+        }
+        if c.area_fraction.value > FULL_CONTACT_WARN {
+            w.push(format!(
+                "near full contact (A/A0 = {:.3}): the rms stresses tend to the exact full-contact \
+                 values, but the partial-contact distribution of eq. (B11) and the peak values \
+                 drawn from it are outside the range the theory was built and tested for",
+                c.area_fraction.value
+            ));
+        }
+        if self.rms_slope > SLOPE_WARN {
+            w.push(format!(
+                "rms slope {:.3} > 1: the theory is small-slope linear elasticity; at \
+                 such slopes the film's strains are large and the stresses are indicative only",
+                self.rms_slope
+            ));
+        }
+        w
+    }
+
+    /// Evaluations at many thicknesses, in parallel; each equal to [`evaluate`](Self::evaluate)
+    /// at its thickness afterwards, to the last bit (one kernel table serves them all).
+    pub fn sweep(&self, thicknesses: &[f64]) -> Result<Vec<Evaluation>, Error> {
+        let (lo, hi) = thicknesses
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), &d| {
+                (lo.min(d), hi.max(d))
+            });
+        self.engine.prepare(&self.design.layers, lo, hi);
+        thicknesses.par_iter().map(|&d| self.evaluate(d)).collect()
+    }
+}

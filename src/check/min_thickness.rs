@@ -1,0 +1,304 @@
+//! The minimum-thickness search: why scan, then refine.
+//!
+//! τ_rms(d) is not monotone: it rises as the film thins and falls to 0 as d → 0 (a vanishing film
+//! has a frictionless top), so pass/fail in d can change more than once and a bisection on the
+//! whole range can land inside a failing band. [`Checker::min_thickness`] therefore
+//! 1. starts at q_L·d = [`SCAN_START_QD`] = 10 (q_L the spectrum's lowest wavenumber). Every
+//!    mode of a thicker film has qd ≥ 10, where |f| and |g| only decrease with qd (|g| peaks at
+//!    qd ≤ 2.1) and |S⁻² − 1| ≤ 1.8e-6 (test `thick_films_only_relax_beyond_the_scan_start`):
+//!    the interface stresses fall as d grows and A/A0 moves by a few 1e-6 at most, so when
+//!    u ≤ 1 − [`THICK_SLACK`] there, every thicker film passes. Otherwise the bulk bound
+//!    d_hi = 50/q_L is evaluated too: f, g decay like (1 + qd)e^{−qd}, at most twice that on a
+//!    stiff substrate, so at q_L·d = 50 the interface stresses are below 1e-19 of the surface
+//!    ones and S(qd) = 1 to rounding: every thicker film behaves the same. If d_hi fails, no
+//!    thickness passes;
+//! 2. steps down in ln d and stops at the first failing thickness (the largest failing sample).
+//!    Only the upper end of the failing region matters for d_min, so nothing thinner is
+//!    evaluated. The base step is 1/[`POINTS_PER_DECADE`] of a decade; it is widened, to at
+//!    most 0.75 decade while the utilisation u (value/limit) stays below 0.15 over the step, or
+//!    0.5 decade below 0.3 ([`WIDE_STEPS`]), with u extrapolated log-linearly from the last two
+//!    samples at a growth rate of ln u per unit of ln d of at least [`MIN_GROWTH`] (aimed at
+//!    [`WIDE_AIM`] of the threshold). A widened step that lands above its threshold is redone
+//!    with base steps (its sample is reused).
+//!    A thick film's utilisation is flat (its interface stresses are exponentially small) and
+//!    these steps cross it in a few evaluations instead of eight per decade. Why a failing band
+//!    cannot hide inside a widened step whose ends are below its threshold: with P and S frozen,
+//!    τ_rms² = Σ_q w_q g²(qd) with w_q ≥ 0, and |g| is unimodal in ln(qd), above a quarter of
+//!    its maximum on a stretch at least 1.90 wide and above half of it on one at least 1.32
+//!    wide (the narrowest pair: a ν = 0 film on a rigid substrate; test
+//!    `wide_steps_are_narrower_than_the_shear_kernel`), more than the steps (1.73 and 1.15 in
+//!    ln d). Any such superlevel set through a point d* is at least as wide, so for every mode
+//!    one end of a step around d* sees |g| ≥ c·|g(q d*)| (c = 1/4, 1/2), and the larger end
+//!    utilisation is at least c·u(d*)/√2 (0.177, 0.354): a failing point (u > 1) inside would
+//!    put an end above the threshold (0.15, 0.3); test `few_mode_shear_bands_match_a_dense_scan`
+//!    checks this on random spectra. The substrate-yield values go through |f|, monotone in qd,
+//!    and through S (in P and G), which has at most one turn in qd (test
+//!    `s_turns_at_most_once_and_f_never_rises`: 88 pairs from E0/E1 = 1e-8 to 1e8, ν 0 to 0.5;
+//!    22 of them turn once, none twice);
+//! 3. guards against a failing band narrower than the step: at every sampled local maximum of
+//!    u above [`PEAK_GUARD`] it maximises u between the neighbouring samples by successive
+//!    parabolic interpolation (golden-section steps where the parabola does not help) and treats
+//!    the first failing point as a failing sample. It stops, after at least one evaluation, when
+//!    the parabola through the best three points promises less than [`GUARD_RESOLVED`] of the
+//!    remaining headroom 1 − u (a smooth maximum below 1 costs one or two evaluations);
+//! 4. refines the pass/fail crossing in ln d until the bracket's relative width is at most
+//!    [`D_MIN_RTOL`], by the ITP method (Oliveira & Takahashi 2020: a projection onto a shrinking
+//!    interval around the midpoint; never more steps than bisection plus one) with inverse
+//!    quadratic interpolation on ln u as its estimate (the scan sample above the bracket is its
+//!    third point from the start). An estimate within δ of a bracket end is moved to 4δ from
+//!    it, so that it lands across the crossing and closes the bracket: a smooth utilisation
+//!    needs two or three steps. d_min is the bracket's geometric midpoint; its error is the
+//!    distance to the bracket's upper end plus the shift of the crossing by the utilisation's
+//!    own relative error, δu/|d ln u/d ln d|;
+//! 5. stops at the floor d_lo = max(1 nm, min(1e-6/q_L, 1e-4/q_hi)): a film thinner than 1 nm
+//!    is not a continuum, and when the floor is above 1 nm every mode of the spectrum has
+//!    q·d ≤ 1e-4 there, the thin-film limit in which the interface stresses only fall further
+//!    as d → 0 (τ ∝ g → q·d). When every sample down to d_lo passes, d_min is reported as d_lo
+//!    with `all_pass_to_floor` set (and a warning naming the floor).
+//!
+//! Each evaluation during the search requests only what the enabled checks need (bond-shear:
+//! τ_rms; substrate-yield: A/A0 and σ_rms at the interface), reusing one [`crate::contact::Engine`] per spectrum.
+//!
+//!
+//! The crossing of step 4 is refined by [`super::itp::refine`].
+
+use super::itp::{Bracket, refine};
+use super::*;
+use crate::error::Error;
+use crate::prec::Termination;
+
+/// The minimum-thickness search on [lo, hi] (module docs, steps 1–5) for a utilisation
+/// function `util(d) = (max over checks of value/limit, the check attaining it)`; a thickness
+/// fails when its utilisation exceeds 1.
+pub fn search_min_thickness(
+    lo: f64,
+    hi: f64,
+    mut util: impl FnMut(f64) -> Result<Utilisation, Error>,
+) -> Result<MinThickness, Error> {
+    let mut evaluations = 0usize;
+    // The largest relative error of any utilisation used.
+    let mut u_rel_err = 0.0f64;
+    let mut util = |x: f64| -> Result<Sample, Error> {
+        evaluations += 1;
+        let u = util(x.exp())?;
+        u_rel_err = u_rel_err.max(u.rel_err);
+        Ok(Sample {
+            x,
+            u: u.value,
+            kind: u.kind,
+        })
+    };
+    let result = |thickness, governing, all_pass_to_floor, evaluations| MinThickness {
+        thickness,
+        governing,
+        floor: lo,
+        bulk: hi,
+        all_pass_to_floor,
+        evaluations,
+    };
+    // The scan starts at q_L·d = SCAN_START_QD; the bulk bound is needed only when that fails
+    // or nearly does (module docs, step 1).
+    let start = util((hi * SCAN_START_QD / BULK_QD).clamp(lo, hi).ln())?;
+    if start.kind.is_none() {
+        // No stress check enabled: every thickness passes.
+        return Ok(result(Some(Estimate::exact(lo)), None, true, 1));
+    }
+    // Samples from the top, and the first failing one with the passing sample above it.
+    let mut samples = Vec::new();
+    if start.u > 1.0 - THICK_SLACK && start.x < hi.ln() {
+        let top = util(hi.ln())?;
+        if top.u > 1.0 {
+            return Ok(result(None, top.kind, false, 2));
+        }
+        samples.push(top);
+    } else if start.u > 1.0 {
+        return Ok(result(None, start.kind, false, 1));
+    }
+    samples.push(start);
+    let mut failing: Option<(Sample, Sample)> = (start.u > 1.0).then(|| (start, samples[0]));
+    let (x_lo, h) = (lo.ln(), std::f64::consts::LN_10 / POINTS_PER_DECADE);
+    // A sample that a widened step found above its threshold: the stretch above it may hide
+    // a failing band, so it is scanned again with base steps down to that sample (reused).
+    let mut pending: Option<Sample> = None;
+    while failing.is_none() {
+        let cur = samples[samples.len() - 1];
+        if cur.x <= x_lo {
+            break;
+        }
+        let above = samples.len().checked_sub(2).map(|i| samples[i]);
+        let ((step, below), floor) = match pending {
+            Some(p) => ((h, f64::INFINITY), p.x),
+            None => (scan_step(above, cur, h), x_lo),
+        };
+        let x = (cur.x - step).max(floor);
+        let next = match pending.take_if(|p| p.x == x) {
+            Some(p) => p,
+            None => {
+                let s = util(x)?;
+                if s.u >= below {
+                    pending = Some(s);
+                    continue;
+                }
+                s
+            }
+        };
+        samples.push(next);
+        if next.u > 1.0 {
+            failing = Some((next, cur));
+        } else if let Some(a) = above {
+            // A sampled local maximum: look between the neighbours for a narrow failing band.
+            if cur.u > a.u && cur.u >= next.u && cur.u > PEAK_GUARD {
+                failing = peak_guard(next, cur, a, &mut util)?;
+            }
+        }
+    }
+    let Some((fail, pass)) = failing else {
+        return Ok(result(Some(Estimate::exact(lo)), None, true, evaluations));
+    };
+    let mut governing = fail.kind;
+    // The interpolation's points: the scan sample above the bracket, then the bracket's ends.
+    let above = samples
+        .iter()
+        .filter(|s| s.x > pass.x)
+        .min_by(|a, b| a.x.total_cmp(&b.x))
+        .map(|s| (s.x, s.u.ln()));
+    let b = refine(
+        Bracket {
+            x_fail: fail.x,
+            y_fail: fail.u.ln(),
+            x_pass: pass.x,
+            y_pass: pass.u.ln(),
+        },
+        above,
+        0.5 * D_MIN_RTOL.ln_1p(),
+        |x| {
+            let s = util(x)?;
+            if s.u > 1.0 {
+                governing = s.kind;
+            }
+            Ok(s.u.ln())
+        },
+    )?;
+    let (x_fail, y_fail, x_pass, y_pass) = (b.x_fail, b.y_fail, b.x_pass, b.y_pass);
+    let mid = (0.5 * (x_fail + x_pass)).exp();
+    // The geometric midpoint is nearer the bracket's lower end: its distance to the upper one
+    // bounds the bracket error.
+    let bracket = x_pass.exp() - mid;
+    // The utilisations' own errors shift the crossing by δ(ln u)/|d ln u/d ln d| in ln d, with
+    // δ(ln u) = −ln(1 − relative error), the larger side; the slope is the secant over the
+    // final bracket.
+    let slope = (y_fail - y_pass) / (x_pass - x_fail);
+    let shift = mid * (-(-u_rel_err.min(0.5)).ln_1p() / slope.abs()).exp_m1();
+    let d_min = Estimate::new(mid, bracket + shift, Termination::Converged);
+    Ok(result(Some(d_min), governing, false, evaluations))
+}
+
+/// One sample of the minimum-thickness search: x = ln d, the utilisation and its check.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Sample {
+    pub(super) x: f64,
+    pub(super) u: f64,
+    pub(super) kind: Option<CheckKind>,
+}
+
+type Util<'a> = dyn FnMut(f64) -> Result<Sample, Error> + 'a;
+
+/// The scan's next step down in ln d after `cur` (module docs, step 2) and the utilisation
+/// its end must stay below (infinite for the base step `h`): the longest of the [`WIDE_STEPS`]
+/// over which the log-linear extrapolation of u (growth rate of ln u per unit of ln d from the
+/// last two samples, at least [`MIN_GROWTH`]) stays below [`WIDE_AIM`] of the step's
+/// threshold, else `h`.
+fn scan_step(above: Option<Sample>, cur: Sample, h: f64) -> (f64, f64) {
+    let base = (h, f64::INFINITY);
+    let rate = match above {
+        _ if cur.u <= 0.0 => return base,
+        None => MIN_GROWTH,
+        Some(a) if a.u > 0.0 => ((cur.u / a.u).ln() / (a.x - cur.x)).max(MIN_GROWTH),
+        Some(_) => return base,
+    };
+    WIDE_STEPS
+        .iter()
+        .filter(|w| cur.u < w.below)
+        .map(|w| {
+            let longest = w.decades * std::f64::consts::LN_10;
+            (
+                ((WIDE_AIM * w.below / cur.u).ln() / rate).min(longest),
+                w.below,
+            )
+        })
+        .fold(base, |best, s| if s.0 > best.0 { s } else { best })
+}
+
+/// The narrow-band guard (module docs, step 3) at a sampled local maximum `mid` between the
+/// samples `lo` and `hi` (lo.x < mid.x < hi.x): successive parabolic interpolation for the
+/// maximum of the utilisation, stopping at the first failing point, else once the parabola
+/// through the best three points promises less than [`GUARD_RESOLVED`] of the remaining
+/// headroom (after at least one evaluation), or the bracket is 1e-3 wide in ln d, or after
+/// [`GUARD_MAX_STEPS`] evaluations (the golden-section search it replaces took 13). Returns the
+/// failing point and the nearest passing point above it.
+pub(super) fn peak_guard(
+    mut lo: Sample,
+    mut mid: Sample,
+    mut hi: Sample,
+    f: &mut Util<'_>,
+) -> Result<Option<(Sample, Sample)>, Error> {
+    let mut seen = vec![lo, mid, hi];
+    let mut evaluated = false;
+    while hi.x - lo.x > 1e-3 && seen.len() < 3 + GUARD_MAX_STEPS {
+        let w = hi.x - lo.x;
+        let vertex = parabola_vertex(lo, mid, hi);
+        if evaluated && vertex.is_none_or(|v| v.1 - mid.u <= GUARD_RESOLVED * (1.0 - mid.u)) {
+            break;
+        }
+        // The wider side of the bracket, for a golden-section step when the parabola is flat
+        // or its vertex too close to the best point.
+        let side = if hi.x - mid.x >= mid.x - lo.x {
+            hi.x
+        } else {
+            lo.x
+        };
+        let golden = mid.x + 0.381_966 * (side - mid.x);
+        let sep = 0.05 * w;
+        let x = match vertex {
+            Some((xv, _)) if (xv - mid.x).abs() >= sep => xv.clamp(lo.x + sep, hi.x - sep),
+            _ => golden,
+        };
+        let s = f(x)?;
+        evaluated = true;
+        if s.u > 1.0 {
+            let above = seen
+                .iter()
+                .filter(|p| p.x > x)
+                .min_by(|a, b| a.x.total_cmp(&b.x))
+                .copied()
+                .unwrap_or(hi);
+            return Ok(Some((s, above)));
+        }
+        seen.push(s);
+        if s.u > mid.u {
+            if s.x < mid.x {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+            mid = s;
+        } else if s.x < mid.x {
+            lo = s;
+        } else {
+            hi = s;
+        }
+    }
+    Ok(None)
+}
+
+/// The vertex (x, value) of the parabola through three samples, when it opens downwards.
+fn parabola_vertex(a: Sample, b: Sample, c: Sample) -> Option<(f64, f64)> {
+    let ab = (b.u - a.u) / (b.x - a.x);
+    let bc = (c.u - b.u) / (c.x - b.x);
+    let curv = (bc - ab) / (c.x - a.x);
+    if curv.is_nan() || curv >= 0.0 {
+        return None;
+    }
+    let x = 0.5 * (a.x + b.x) - 0.5 * ab / curv;
+    Some((x, a.u + ab * (x - a.x) + curv * (x - a.x) * (x - b.x))).filter(|v| v.0.is_finite())
+}

@@ -1,0 +1,77 @@
+//! All output: a judged scene ([`mod@check`]), the thickness sweep ([`mod@sweep`]), a batch
+//! ([`mod@batch`], [`junit`], [`parquet`]), the exact contact ([`mod@verify`]); human tables use
+//! comfy-table with MPa, µm and 4 significant digits ([`sig`]). Files and standard output are
+//! written by [`mod@write`], the one writer.
+
+use comfy_table::{Table, presets::UTF8_FULL_CONDENSED};
+
+pub mod batch;
+pub mod check;
+pub mod junit;
+pub mod parquet;
+pub mod sweep;
+pub mod verify;
+pub mod write;
+pub use check::{csv, human, json, scene};
+pub use sweep::{SWEEP, sweep};
+pub use write::{is_broken_pipe, stdout, write_file, write_with};
+
+/// Output format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    Table,
+    Json,
+    Csv,
+}
+
+/// `x` with `digits` significant digits: fixed notation for 1e-3 ≤ |x| < 1e6, else scientific.
+pub fn sig(x: f64, digits: usize) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    // The exponent after rounding to `digits` (9.9999 → 10.00, not 10.000).
+    let e0 = x.abs().log10().floor() as i32;
+    let scale = 10f64.powi(digits as i32 - 1 - e0);
+    let rounded = (x * scale).round() / scale;
+    let e = rounded.abs().log10().floor() as i32;
+    if (-3..6).contains(&e) {
+        let decimals = (digits as i32 - 1 - e).max(0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        format!("{:.*e}", digits - 1, x)
+    }
+}
+
+fn mpa(pa: f64) -> String {
+    sig(pa * 1e-6, 4)
+}
+
+fn um(m: f64) -> String {
+    sig(m * 1e6, 4)
+}
+
+fn table(header: &[&str]) -> Table {
+    let mut t = Table::new();
+    t.load_preset(UTF8_FULL_CONDENSED);
+    t.set_header(header.iter().copied());
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn significant_digits() {
+        assert_eq!(sig(0.0927412, 4), "0.09274");
+        assert_eq!(sig(0.357, 4), "0.3570");
+        assert_eq!(sig(12.345678, 4), "12.35");
+        assert_eq!(sig(1234.6, 4), "1235");
+        assert_eq!(sig(2.5e-7, 3), "2.50e-7");
+        assert_eq!(sig(3e8, 4), "3.000e8");
+        assert_eq!(sig(0.0, 4), "0");
+        assert_eq!(sig(9.999999, 4), "10.00");
+        assert_eq!(sig(-0.00099996, 4), "-0.001000");
+        assert_eq!(sig(0.00099996, 3), "0.00100");
+    }
+}

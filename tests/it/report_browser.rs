@@ -1,0 +1,99 @@
+//! The HTML report as a person sees it: rendered by headless Chromium (Debian's `chromium`)
+//! into a PNG, which must not be blank, and the page's SVG plots must carry their titles, axis
+//! titles and tick labels. Without Chromium the test says so and passes, unless
+//! `COATCHECK_REQUIRE_CHROMIUM` is set (CI sets it, and installs Chromium).
+
+use crate::common::run;
+use std::path::Path;
+use std::process::Command;
+
+fn chromium() -> Option<&'static str> {
+    ["chromium", "chromium-browser", "google-chrome"]
+        .into_iter()
+        .find(|b| Command::new(b).arg("--version").output().is_ok_and(|o| o.status.success()))
+}
+
+/// Screenshot `html` into `png` at the given width and height (px).
+fn screenshot(browser: &str, html: &Path, png: &Path, size: (u32, u32)) {
+    let profile = tempfile::tempdir().unwrap();
+    let out = Command::new(browser)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--hide-scrollbars",
+        ])
+        .arg(format!("--user-data-dir={}", profile.path().display()))
+        .arg(format!("--window-size={},{}", size.0, size.1))
+        .arg(format!("--screenshot={}", png.display()))
+        .arg(format!("file://{}", html.display()))
+        .output()
+        .unwrap();
+    assert!(png.exists(), "no screenshot: {}", String::from_utf8_lossy(&out.stderr));
+}
+
+/// Share of pixels that differ from the most common colour (the background).
+fn ink(png: &Path) -> f64 {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(png).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let bpp = info.color_type.samples();
+    let pixels: Vec<&[u8]> = buf[..info.buffer_size()].chunks(bpp).collect();
+    let mut counts = std::collections::HashMap::new();
+    for p in &pixels {
+        *counts.entry(p.to_vec()).or_insert(0usize) += 1;
+    }
+    let background = counts.values().max().copied().unwrap_or(0);
+    1.0 - background as f64 / pixels.len() as f64
+}
+
+#[test]
+fn the_report_renders_with_its_plots_axes_and_labels() {
+    let Some(browser) = chromium() else {
+        assert!(
+            std::env::var_os("COATCHECK_REQUIRE_CHROMIUM").is_none(),
+            "Chromium is required here (COATCHECK_REQUIRE_CHROMIUM) but not found"
+        );
+        eprintln!("skipped: no Chromium on this machine");
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let html = dir.path().join("report.html");
+    let o = run(&[
+        "check",
+        "examples/paper-rubber-on-steel.toml",
+        "--report",
+        html.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let page = std::fs::read_to_string(&html).unwrap();
+    for want in [
+        "PASS",
+        "Roughness power spectrum",
+        "wavenumber q [1/m]",
+        "C(q) [um^4]",
+        "Interface shear",
+        "P(|tau| &gt; t)",
+        "Utilisation (value / limit) against film thickness",
+        "film thickness d [um]",
+        "d_min",
+        "epsilon",
+        "paper-rubber",
+    ] {
+        assert!(page.contains(want), "the page lacks '{want}'");
+    }
+    assert_eq!(page.matches("<svg").count(), 4, "four plots");
+    for network in ["src=\"http", "href=\"http", "<script", "url(http"] {
+        assert!(!page.contains(network), "the page loads {network}");
+    }
+    let png = dir.path().join("report.png");
+    screenshot(browser, &html, &png, (1000, 4000));
+    let share = ink(&png);
+    assert!(share > 0.02, "the screenshot is almost blank ({share})");
+}

@@ -1,0 +1,135 @@
+//! The JSON Schemas shipped in `src/report/schema/` checked against real output of every command
+//! that writes JSON, with a small validator for the part of JSON Schema (2020-12) they use:
+//! `type`, `properties`, `required`, `additionalProperties: false`, `items`, `enum`, `const`,
+//! `minimum`, `anyOf`, `$ref` to `#/$defs/…`. (The `jsonschema` crate would pull in an HTTP
+//! client and a regex engine for this.) The validator itself is tested on small cases, including
+//! ones it must reject.
+
+use serde_json::{Value, json};
+
+fn type_matches(t: &str, v: &Value) -> bool {
+    match t {
+        "object" => v.is_object(),
+        "array" => v.is_array(),
+        "string" => v.is_string(),
+        "number" => v.is_number(),
+        "integer" => v.as_f64().is_some_and(|x| x.fract() == 0.0),
+        "boolean" => v.is_boolean(),
+        "null" => v.is_null(),
+        _ => false,
+    }
+}
+
+/// Errors of `v` against `schema` (resolving `$ref` in `root`), each with its JSON path.
+pub fn validate(root: &Value, schema: &Value, v: &Value, path: &str, errors: &mut Vec<String>) {
+    if let Some(r) = schema.get("$ref").and_then(Value::as_str) {
+        let name = r
+            .strip_prefix("#/$defs/")
+            .expect("only #/$defs/ references");
+        let target = &root["$defs"][name];
+        assert!(!target.is_null(), "unknown $ref {r}");
+        return validate(root, target, v, path, errors);
+    }
+    if let Some(t) = schema.get("type") {
+        let ok = match t {
+            Value::String(t) => type_matches(t, v),
+            Value::Array(ts) => ts.iter().any(|t| type_matches(t.as_str().unwrap_or(""), v)),
+            _ => false,
+        };
+        if !ok {
+            errors.push(format!("{path}: expected type {t}, got {v}"));
+            return;
+        }
+    }
+    if let Some(options) = schema.get("enum").and_then(Value::as_array)
+        && !options.contains(v)
+    {
+        errors.push(format!("{path}: {v} not one of {options:?}"));
+    }
+    if let Some(c) = schema.get("const")
+        && c != v
+    {
+        errors.push(format!("{path}: {v} is not {c}"));
+    }
+    if let (Some(min), Some(x)) = (schema.get("minimum").and_then(Value::as_f64), v.as_f64())
+        && x < min
+    {
+        errors.push(format!("{path}: {x} below the minimum {min}"));
+    }
+    if let Some(options) = schema.get("anyOf").and_then(Value::as_array) {
+        let any = options.iter().any(|s| {
+            let mut e = Vec::new();
+            validate(root, s, v, path, &mut e);
+            e.is_empty()
+        });
+        if !any {
+            errors.push(format!("{path}: matches none of anyOf"));
+        }
+    }
+    if let Some(obj) = v.as_object() {
+        let props = schema.get("properties").and_then(Value::as_object);
+        for key in schema
+            .get("required")
+            .and_then(Value::as_array)
+            .into_iter()
+            .flatten()
+        {
+            let key = key.as_str().expect("required names");
+            if !obj.contains_key(key) {
+                errors.push(format!("{path}: missing required key '{key}'"));
+            }
+        }
+        for (k, x) in obj {
+            match props.and_then(|p| p.get(k)) {
+                Some(s) => validate(root, s, x, &format!("{path}.{k}"), errors),
+                None if schema.get("additionalProperties") == Some(&Value::Bool(false)) => {
+                    errors.push(format!("{path}: key '{k}' is not in the schema"));
+                }
+                None => {}
+            }
+        }
+    }
+    if let (Some(items), Some(arr)) = (schema.get("items"), v.as_array()) {
+        for (i, x) in arr.iter().enumerate() {
+            validate(root, items, x, &format!("{path}[{i}]"), errors);
+        }
+    }
+}
+
+pub fn errors(schema: &Value, v: &Value) -> Vec<String> {
+    let mut e = Vec::new();
+    validate(schema, schema, v, "$", &mut e);
+    e
+}
+
+#[test]
+fn the_validator_accepts_and_rejects_what_it_should() {
+    let schema = json!({
+        "$defs": { "pos": { "type": "number", "minimum": 0 } },
+        "type": "object",
+        "required": ["a", "b"],
+        "additionalProperties": false,
+        "properties": {
+            "a": { "$ref": "#/$defs/pos" },
+            "b": { "type": "array", "items": { "enum": ["x", "y"] } },
+            "c": { "anyOf": [{ "type": "null" }, { "type": "string" }] },
+            "v": { "const": 1 }
+        }
+    });
+    assert!(errors(&schema, &json!({"a": 1.5, "b": ["x"], "c": null, "v": 1})).is_empty());
+    for (bad, why) in [
+        (json!({"b": []}), "missing required key 'a'"),
+        (json!({"a": -1, "b": []}), "below the minimum"),
+        (json!({"a": 1, "b": ["z"]}), "not one of"),
+        (
+            json!({"a": 1, "b": [], "d": 0}),
+            "key 'd' is not in the schema",
+        ),
+        (json!({"a": 1, "b": [], "c": 3}), "matches none of anyOf"),
+        (json!({"a": "1", "b": []}), "expected type"),
+        (json!({"a": 1, "b": [], "v": 2}), "is not 1"),
+    ] {
+        let e = errors(&schema, &bad);
+        assert!(e.iter().any(|m| m.contains(why)), "{bad}: {e:?}");
+    }
+}
