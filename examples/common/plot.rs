@@ -6,12 +6,12 @@
 //! the same directory and renamed into place, so no half-written file is ever left.
 
 use coatcheck::figures::Figure;
-use coatcheck::plot::{Extras, RGBColor};
+use coatcheck::report::plot::{Extras, RGBColor};
 use std::error::Error;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-pub use coatcheck::plot::Legend;
+pub use coatcheck::report::plot::Legend;
 
 /// Compute the figure with `n` points per series, write its CSV and SVG, print where and how
 /// long it took; on failure print the error and exit with status 1.
@@ -97,5 +97,5 @@ fn svg_text(fig: &Figure, colors: &[RGBColor], legend: Legend) -> Result<String,
         colors: colors.to_vec(),
         ..Extras::default()
     };
-    Ok(coatcheck::plot::svg(fig, &extras)?)
+    Ok(coatcheck::report::plot::svg(fig, &extras)?)
 }

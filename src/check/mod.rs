@@ -13,7 +13,8 @@
 //! A check's margin is the unused fraction of its limit: 1 − value/limit for an upper limit
 //! (stresses), 1 − d_min/d for the thickness; a check passes when its margin is ≥ 0. The rules
 //! shared with the exact check ([`crate::verify`]) are in [`criteria`]; the minimum-thickness
-//! search and the argument for it in [`min_thickness`], its root finder in [`itp`].
+//! search and the argument for it in [`min_thickness`], its root finder in [`itp`]; what alone
+//! would make a failing design pass in [`levers`].
 //!
 //! ## Validity
 //! The outcome carries a warning, with the number that triggered it, where the theory is
@@ -24,6 +25,7 @@
 mod checker;
 pub mod criteria;
 pub mod itp;
+pub mod levers;
 pub mod min_thickness;
 #[cfg(test)]
 mod tests;

@@ -89,7 +89,7 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
             let Ok(j) = &run.result else {
                 unreachable!("judged above")
             };
-            (report::scene(j, args.format)?, if j.pass() { 0 } else { 1 })
+            (report::scene(j, Format::from(args.format))?, if j.pass() { 0 } else { 1 })
         }
     };
     output(&args, &text)?;
@@ -119,7 +119,7 @@ fn run_sweep(
     if let Some(path) = &args.parquet {
         report::parquet::write_sweep(path, &rows)?;
     }
-    report::sweep(&rows, args.format)
+    report::sweep(&rows, Format::from(args.format))
 }
 
 /// The report to `--output` or standard output.
@@ -173,9 +173,9 @@ fn run_batch(args: &CheckArgs) -> Result<i32, Error> {
     let runs = batch::run_all(&files, &args.overrides(), &library, &|| progress.inc(1));
     progress.finish_and_clear();
     let seconds = start.elapsed().as_secs_f64();
-    let text = report::batch::report(&runs, seconds, args.format)?;
+    let text = report::batch::report(&runs, seconds, Format::from(args.format))?;
     // The table lists the errors; other formats and files get them on standard error.
-    if args.format != Format::Table || args.output.is_some() {
+    if Format::from(args.format) != Format::Table || args.output.is_some() {
         for run in &runs {
             if let Err(e) = &run.result {
                 eprintln!("coatcheck: {e}");

@@ -3,7 +3,7 @@
 
 use clap::builder::ValueParser;
 use clap::{Arg, ArgAction, ArgMatches, Command, FromArgMatches};
-use coatcheck::report::Format;
+use super::OutputFormat;
 use coatcheck::scene::{Key, Value};
 use std::path::PathBuf;
 
@@ -43,7 +43,7 @@ pub struct CheckArgs {
     pub keys: SceneFlags,
     /// Output format.
     #[arg(long, value_enum, default_value = "table")]
-    pub format: Format,
+    pub format: OutputFormat,
     /// Write the report to this file (atomically) instead of standard output.
     #[arg(long)]
     pub output: Option<PathBuf>,

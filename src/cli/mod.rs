@@ -39,6 +39,24 @@ enum Command {
     Verify(verify::VerifyArgs),
 }
 
+/// `--format` of `check`: the report's formats as a command-line value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum OutputFormat {
+    Table,
+    Json,
+    Csv,
+}
+
+impl From<OutputFormat> for coatcheck::report::Format {
+    fn from(f: OutputFormat) -> Self {
+        match f {
+            OutputFormat::Table => Self::Table,
+            OutputFormat::Json => Self::Json,
+            OutputFormat::Csv => Self::Csv,
+        }
+    }
+}
+
 pub fn run() -> i32 {
     let cli = Cli::parse();
     let result = match cli.command {

@@ -7,8 +7,10 @@ use comfy_table::{Table, presets::UTF8_FULL_CONDENSED};
 
 pub mod batch;
 pub mod check;
+pub mod html;
 pub mod junit;
 pub mod parquet;
+pub mod plot;
 pub mod sweep;
 pub mod verify;
 pub mod write;
@@ -17,7 +19,7 @@ pub use sweep::{SWEEP, sweep};
 pub use write::{is_broken_pipe, stdout, write_file, write_with};
 
 /// Output format.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
     Table,
     Json,

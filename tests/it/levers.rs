@@ -4,7 +4,7 @@
 
 use coatcheck::check::{Checker, Design};
 use coatcheck::layer::{Bilayer, Elastic};
-use coatcheck::levers::{Lever, REL_TOL, SPAN, levers};
+use coatcheck::check::levers::{Lever, REL_TOL, SPAN, levers};
 use coatcheck::prec::Settings;
 use coatcheck::psd::{Spectrum, Tabulated};
 

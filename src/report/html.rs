@@ -1,6 +1,6 @@
 //! The qualification report as one self-contained HTML page: verdict and governing check first,
 //! then the checks, what to change when one fails, the inputs with their sources, the plots
-//! (inline SVG from [`crate::plot`]), the warnings and the uncertainty. No script, no network,
+//! (inline SVG from [`crate::report::plot`]), the warnings and the uncertainty. No script, no network,
 //! no font files: the page prints as it shows. Batches: a summary table, then a section per
 //! scene.
 //!
@@ -15,7 +15,7 @@ use crate::Error;
 use crate::check::{CheckKind, Checker, Outcome, log_space};
 use crate::contact::{NormalStress, tau_exceedance};
 use crate::figures::{Axis, Figure, Series};
-use crate::plot::{Band, Extras, Legend, Marker, svg};
+use crate::report::plot::{Band, Extras, Legend, Marker, svg};
 use crate::psd::Spectrum;
 
 /// Points per plotted curve.
