@@ -1,4 +1,4 @@
-//! Reading a roughness spectrum from a text file as users have them (issue 4).
+//! Reading a roughness spectrum from a text file as users have them.
 //!
 //! The file is a table of numbers with an optional header line:
 //! - comment lines start with `#`, `%` or `//`; blank lines are skipped; a UTF-8 BOM and
@@ -18,7 +18,7 @@
 //! The C column is a 2D PSD in m^4 (the theory's C(q), notes.md) unless its unit is a length
 //! cubed or [`ReadOptions::kind`] says [`PsdKind::OneD`]: then it is the one-sided 1D PSD of a
 //! line scan in m^3 (h_rms² = ∫_0^∞ C1D dq) and is converted to the isotropic 2D PSD with the
-//! exact inverse Abel transform ([`crate::topography::convert`]).
+//! exact inverse Abel transform ([`crate::psd::abel`]).
 //!
 //! Data are checked, not repaired: a non-number, a non-positive or non-finite q or C, a
 //! duplicate q, too few columns or fewer than two points is an [`Error::Input`] naming the file,
@@ -26,7 +26,7 @@
 
 use crate::error::Error;
 use crate::psd::Tabulated;
-use crate::topography::convert::{self, Conversion};
+use crate::psd::abel::{self, Conversion};
 use crate::units::{Dim, unit_scale};
 use std::path::Path;
 use std::str::FromStr;
@@ -552,7 +552,7 @@ pub fn parse_spectrum(
         PsdKind::TwoD => Tabulated::new(q, c).map_err(|e| err(line_of(0), e.to_string()))?,
         PsdKind::OneD => {
             let n = q.len();
-            let conv = convert::c2d_from_c1d(&q, &c, opts.conversion).map_err(|e| {
+            let conv = abel::c2d_from_c1d(&q, &c, opts.conversion).map_err(|e| {
                 let first = q
                     .iter()
                     .position(|&x| x >= 0.5 * q[n - 1])

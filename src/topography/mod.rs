@@ -1,6 +1,6 @@
-//! Surface topography: height data, their power spectra, and synthetic surfaces (issue 4).
+//! Surface topography: height data, their power spectra, and synthetic surfaces.
 //!
-//! Normalisation of the spectra (paper eq. A2 for the 2D PSD; details in [`convert`]):
+//! Normalisation of the spectra (paper eq. A2 for the 2D PSD; details in [`crate::psd::abel`]):
 //! - 2D PSD C(q) in m^4: h_rms² = 2π∫_0^∞ q C(q) dq. From a map of N = nx·ny heights with
 //!   pixel sizes dx, dy and discrete Fourier transform H_k = Σ_n h_n e^{−ik·n}, the periodogram
 //!   is C(q_k) = dx dy |H_k|² / ((2π)² N ⟨w²⟩) (w the window), so that
@@ -12,11 +12,9 @@
 //! - [`Profile`], [`HeightMap`]: the data, SI inside (m);
 //! - [`io`]: readers (line scans, height maps) and the height-map writer;
 //! - [`spectrum`]: detrend → window → FFT → radial average → log binning → cut-off;
-//! - [`convert`]: the exact 1D ↔ 2D PSD relation of an isotropic surface (Abel pair);
 //! - [`synth`]: self-affine random-phase surfaces with a known PSD;
 //! - [`psd_of_file`]: file → PSD in one call (`coatcheck psd`, `coatcheck check --profile`).
 
-pub mod convert;
 pub mod io;
 pub mod spectrum;
 pub mod synth;

@@ -21,10 +21,10 @@
 //! The summary's moments (rms slope, curvature) are the discrete sums over the kept modes
 //! (for line scans converted to the isotropic 2D values: ξ² = 2⟨h′²⟩, κ² = (8/3)⟨h″²⟩).
 
-use super::convert::{self, Conversion};
 use super::{HeightMap, Profile};
 use crate::error::Error;
 use crate::psd::Tabulated;
+use crate::psd::abel::{self, Conversion};
 use rayon::prelude::*;
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex64;
@@ -584,7 +584,7 @@ pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd
         mut steps,
         few_mode_points: few,
     } = profile_c1d(profile, opts)?;
-    let conv = convert::c2d_from_c1d(c1d.q(), c1d.c_values(), opts.conversion)?;
+    let conv = abel::c2d_from_c1d(c1d.q(), c1d.c_values(), opts.conversion)?;
     steps.push(match opts.conversion {
         Conversion::InverseAbel => format!(
             "1D -> 2D: exact inverse Abel transform (isotropic surface), C1D continued as q^{:.3} beyond the cut-off",

@@ -1,9 +1,9 @@
-//! The exact 1D ↔ 2D PSD relation (`topography::convert`): analytic pairs, the Abel round
+//! The exact 1D ↔ 2D PSD relation (`psd::abel`): analytic pairs, the Abel round
 //! trip, and line scans of a synthetic map against the map's own 2D PSD.
 
 use coatcheck::psd::Spectrum;
+use coatcheck::psd::abel::{Conversion, c1d_at, c1d_of_spectrum, c2d_from_c1d};
 use coatcheck::topography::Profile;
-use coatcheck::topography::convert::{Conversion, c1d_at, c1d_of_spectrum, c2d_from_c1d};
 use coatcheck::topography::spectrum::{PsdOptions, map_psd, profile_psd};
 use coatcheck::topography::synth::{Amplitude, SynthSpec, self_affine_map};
 use std::f64::consts::PI;
