@@ -253,9 +253,6 @@ impl Bins {
     }
 }
 
-/// Bins with at most this many modes are "few-mode" bins (noisy by nature).
-pub const FEW_MODES: f64 = 4.0;
-
 /// The PSD of a height map.
 pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Error> {
     check_options(opts)?;
@@ -457,8 +454,8 @@ pub struct LinePsd {
     pub c1d: Tabulated,
     pub summary: Summary,
     pub steps: Vec<String>,
-    /// How many of the lowest points come from bins of at most [`FEW_MODES`] modes.
-    pub few_mode_points: usize,
+    /// The number of Fourier modes averaged in each point of `c1d`.
+    pub modes: Vec<f64>,
 }
 
 /// The 1D PSD of line scans (no conversion to 2D).
@@ -562,29 +559,36 @@ pub fn profile_c1d(profile: &Profile, opts: &PsdOptions) -> Result<LinePsd, Erro
         q_max: q_hi,
         outside_fraction: outside(bins.total, bins.kept),
     };
-    let few_mode_points = bins
-        .counts()
-        .iter()
-        .take_while(|&&c| c <= FEW_MODES)
-        .count();
     Ok(LinePsd {
         c1d,
         summary,
         steps,
-        few_mode_points,
+        modes: bins.counts(),
     })
 }
 
 /// The PSD of line scans: the 1D PSD averaged over the scans, and the isotropic 2D PSD from it
-/// by the exact inverse Abel transform (or the option's shortcut).
+/// by the inverse Abel transform of its non-increasing fit (or the option's shortcut; see
+/// [`abel::c2d_from_measured_c1d`]).
 pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd, Error> {
     let LinePsd {
         c1d,
         summary,
         mut steps,
-        few_mode_points: few,
+        modes,
     } = profile_c1d(profile, opts)?;
-    let conv = abel::c2d_from_c1d(c1d.q(), c1d.c_values(), opts.conversion)?;
+    let conv = abel::c2d_from_measured_c1d(c1d.q(), c1d.c_values(), &modes, opts.conversion)?;
+    if let Some(fit) = conv.fit
+        && fit.changed > 0
+    {
+        steps.push(format!(
+            "1D -> 2D: C1D fitted as non-increasing in q (isotonic least squares of ln C1D, \
+             weighted by modes per bin): {} of {} point(s) changed, by at most {:.1} %",
+            fit.changed,
+            modes.len(),
+            100.0 * fit.max_rel_change
+        ));
+    }
     steps.push(match opts.conversion {
         Conversion::InverseAbel => format!(
             "1D -> 2D: exact inverse Abel transform (isotropic surface), C1D continued as q^{:.3} beyond the cut-off",
@@ -592,41 +596,13 @@ pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd
         ),
         Conversion::PiQShortcut => "1D -> 2D: shortcut C = C1D/(pi q)".into(),
     });
-    // At the low-q end each bin holds a handful of modes, and the inverse transform (a half
-    // derivative) turns their scatter into C ≤ 0 there. The points up to the last C ≤ 0 among
-    // these few-mode bins are dropped, and said so in the steps; C ≤ 0 anywhere else is an
-    // error.
-    let mut conv = conv;
-    let lead = conv.c[..few]
-        .iter()
-        .rposition(|e| e.value.is_nan() || e.value <= 0.0)
-        .map_or(0, |i| i + 1);
-    if lead > 0 && lead < conv.c.len() {
-        steps.push(format!(
-            "1D -> 2D: the {lead} lowest-q point(s) (q < {:.4e} 1/m, bins of <= {FEW_MODES} modes) \
-             included C <= 0 from the scatter of the few modes there and were dropped from the \
-             2D PSD (more independent scans help)",
-            conv.q[lead]
-        ));
-        conv.q.drain(..lead);
-        conv.c.drain(..lead);
-    }
-    if let Some(i) = conv
-        .c
-        .iter()
-        .position(|e| e.value.is_nan() || e.value <= 0.0)
-    {
-        return Err(Error::invalid(
+    let c2d = conv.into_tabulated().map_err(|e| {
+        Error::invalid(
             "1D -> 2D conversion",
-            format!(
-                "C = {:.3e} m^4 at q = {:.4e} 1/m",
-                conv.c[i].value, conv.q[i]
-            ),
-            "C > 0: the averaged 1D PSD rises too steeply there for an isotropic surface \
-             (more scans, fewer points per decade, or --conversion pi-q-shortcut)",
-        ));
-    }
-    let c2d = conv.into_tabulated()?;
+            e,
+            "a 2D PSD that is finite and > 0 (heights in SI too large or too small?)",
+        )
+    })?;
     Ok(TopographyPsd {
         c2d,
         c1d: Some(c1d),
