@@ -44,6 +44,8 @@
 //! `one_line_scan_converts_to_a_positive_2d_psd_near_the_true_one`); with many scans the
 //! data are already non-increasing and only the end slopes can change. A ring spectrum (C
 //! peaked away from q = 0) has a rising C1D that this fit flattens: read such data as a 2D map.
+//! Tabulated C1D that never rises ([`c2d_from_c1d`], e.g. a 1D PSD file) is interpolated by
+//! the same monotone cubic; C1D that rises somewhere by the plain one.
 //!
 //! The shortcut C(q) ≈ C1D(q)/(πq) ([`Conversion::PiQShortcut`]) is exact only for a pure
 //! power law with H = 1; in general C1D/(πq C) = 2Γ(H + ½)/(√π Γ(H + 1)), which is 4/π
@@ -197,10 +199,12 @@ pub fn tail_exponent(q: &[f64], c1d: &[f64]) -> f64 {
 }
 
 /// Convert a tabulated one-sided 1D PSD (q in 1/m, C1D in m^3; validated like
-/// [`Tabulated::new`]) to the isotropic 2D PSD at the same q, interpolating the points exactly.
+/// [`Tabulated::new`]) to the isotropic 2D PSD at the same q, interpolating the points: by a
+/// monotone cubic when they never rise (then every C is positive), else by the plain cubic.
 pub fn c2d_from_c1d(q: &[f64], c1d: &[f64], method: Conversion) -> Result<Converted, Error> {
     let t = Tabulated::new(q.to_vec(), c1d.to_vec())?;
-    convert(t.q(), t.c_values(), method, false)
+    let monotone = t.c_values().windows(2).all(|w| w[1] <= w[0]);
+    convert(t.q(), t.c_values(), method, monotone)
 }
 
 /// Convert a measured 1D PSD, binned from `modes[i]` Fourier modes per point, to the
@@ -223,12 +227,14 @@ pub fn c2d_from_measured_c1d(
         ));
     }
     if method == Conversion::PiQShortcut {
-        return convert(t.q(), t.c_values(), method, false);
+        return c2d_from_c1d(q, c1d, method);
     }
     let ln_c: Vec<f64> = t.c_values().iter().map(|c| c.ln()).collect();
     let ln_fit = non_increasing_fit(&ln_c, modes);
-    let fitted: Vec<f64> = ln_fit.iter().map(|v| v.exp()).collect();
-    let mut conv = convert(t.q(), &fitted, method, true)?;
+    let fitted: Vec<f64> = (t.c_values().iter().zip(&ln_c).zip(&ln_fit))
+        .map(|((&c, a), &b)| if *a == b { c } else { b.exp() })
+        .collect();
+    let mut conv = c2d_from_c1d(q, &fitted, method)?;
     let changes = ln_c.iter().zip(&ln_fit).filter(|(a, b)| a != b);
     conv.fit = Some(MonotoneFit {
         changed: changes.clone().count(),
@@ -512,6 +518,47 @@ mod tests {
     /// acosh(e^t) and ln cosh u agree with the direct forms where those do not overflow (the
     /// stable forms are the more accurate near 0, where acosh(1 + t) cancels), and stay finite
     /// and linear beyond: acosh(e^t) → t + ln 2, ln cosh u → u − ln 2.
+    /// The non-increasing fit against its definition: the result never rises, points that
+    /// already fall are kept, a rising run becomes its weighted mean, and no other
+    /// non-increasing sequence has a smaller weighted squared error (checked against small
+    /// perturbations that stay non-increasing).
+    #[test]
+    fn non_increasing_fit_is_the_weighted_least_squares_one() {
+        assert_eq!(
+            non_increasing_fit(&[3.0, 2.0, 1.0], &[1.0; 3]),
+            [3.0, 2.0, 1.0]
+        );
+        assert_eq!(
+            non_increasing_fit(&[3.0, 1.0, 2.0, 0.0], &[1.0; 4]),
+            [3.0, 1.5, 1.5, 0.0]
+        );
+        // Weights 1 and 3: (1·1 + 3·2)/4 = 1.75; then 1.75 < 4 pools all three: (7 + 4)/5.
+        assert_eq!(
+            non_increasing_fit(&[1.0, 2.0, 4.0], &[1.0, 3.0, 1.0]),
+            [2.2, 2.2, 2.2]
+        );
+        let y = [0.3, -0.2, 0.5, 0.1, 0.4, -1.0, -0.9, -2.0];
+        let w = [1.0, 2.0, 1.0, 4.0, 1.0, 3.0, 1.0, 2.0];
+        let f = non_increasing_fit(&y, &w);
+        assert!(f.windows(2).all(|p| p[1] <= p[0]), "{f:?}");
+        let cost = |g: &[f64]| -> f64 {
+            g.iter()
+                .zip(&y)
+                .zip(&w)
+                .map(|((a, b), c)| c * (a - b).powi(2))
+                .sum()
+        };
+        for i in 0..y.len() {
+            for eps in [-1e-3, 1e-3] {
+                let mut g = f.clone();
+                g[i] += eps;
+                if g.windows(2).all(|p| p[1] <= p[0]) {
+                    assert!(cost(&g) > cost(&f), "{i} {eps}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn substitution_without_overflow() {
         for i in 1..=700 {

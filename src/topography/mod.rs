@@ -76,6 +76,17 @@ pub struct HeightFileOptions {
     pub periodic: Option<bool>,
 }
 
+/// An error about the data of a whole file (no single line is at fault), naming the file.
+fn in_file(path: &std::path::Path, e: crate::Error) -> crate::Error {
+    match e {
+        crate::Error::Input { .. } | crate::Error::Io { .. } => e,
+        other => crate::Error::Value {
+            origin: path.display().to_string(),
+            msg: other.to_string(),
+        },
+    }
+}
+
 /// Read a height file (line scans or a height map) and compute its PSD: the pipeline behind
 /// `coatcheck psd` and `coatcheck check --profile`. Returns what the file held and the result.
 pub fn psd_of_file(
@@ -112,7 +123,7 @@ pub fn psd_of_file(
                     periodic: file.periodic,
                 },
             )?;
-            spectrum::profile_psd(&p, opts)?
+            spectrum::profile_psd(&p, opts).map_err(|e| in_file(path, e))?
         }
         HeightKind::Map => {
             let m = io::read_height_map(
@@ -124,7 +135,7 @@ pub fn psd_of_file(
                     periodic: file.periodic,
                 },
             )?;
-            spectrum::map_psd(&m, opts)?
+            spectrum::map_psd(&m, opts).map_err(|e| in_file(path, e))?
         }
     };
     Ok((kind, result))

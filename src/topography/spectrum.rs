@@ -234,6 +234,13 @@ impl Bins {
             .filter(|&b| self.count[b] > 0.0 && self.sum_c[b] > 0.0)
             .map(|b| (self.sum_q[b] / self.count[b], self.sum_c[b] / self.count[b]))
             .unzip();
+        if self.total == 0.0 {
+            return Err(Error::invalid(
+                "heights",
+                "flat after detrending (every Fourier mode is zero)",
+                "a rough surface: heights that vary beyond the removed trend",
+            ));
+        }
         if q.len() < 2 {
             return Err(Error::invalid(
                 what,
@@ -251,6 +258,136 @@ impl Bins {
             .map(|b| self.count[b])
             .collect()
     }
+}
+
+/// A fitted 2D polynomial trend: the terms c·P_i(x)·P_j(y) on the grid's orthogonal
+/// polynomials.
+struct Trend {
+    px: Vec<Vec<f64>>,
+    py: Vec<Vec<f64>>,
+    terms: Vec<(usize, usize, f64)>,
+}
+
+impl Trend {
+    /// The least-squares trend of degree `deg`: coefficients of the products P_i(x) P_j(y),
+    /// i + j ≤ deg.
+    fn fit(map: &HeightMap, deg: usize) -> Self {
+        let px = orthogonal_polys(map.nx, deg);
+        let py = orthogonal_polys(map.ny, deg);
+        let mut terms: Vec<(usize, usize, f64)> = Vec::new();
+        for (i, pxi) in px.iter().enumerate() {
+            for (j, pyj) in py.iter().enumerate() {
+                if i + j > deg {
+                    continue;
+                }
+                // Summed in row order after the parallel map: the same bits whatever the threads.
+                let num: f64 = (0..map.ny)
+                    .into_par_iter()
+                    .map(|iy| pyj[iy] * dot(map.row(iy), pxi))
+                    .collect::<Vec<f64>>()
+                    .iter()
+                    .sum();
+                let c = num / (dot(pxi, pxi) * dot(pyj, pyj));
+                terms.push((i, j, c));
+            }
+        }
+        Self { px, py, terms }
+    }
+
+    fn at(&self, ix: usize, iy: usize) -> f64 {
+        self.terms
+            .iter()
+            .map(|&(i, j, c)| c * self.px[i][ix] * self.py[j][iy])
+            .sum()
+    }
+}
+
+/// The window along one axis and its mean square.
+fn window_of(window: Window, n: usize) -> (Vec<f64>, f64) {
+    match window {
+        Window::Hann => hann(n),
+        Window::None => (vec![1.0; n], 1.0),
+    }
+}
+
+/// Row FFTs of the detrended, windowed map into the half spectrum (kx ≥ 0, `nx/2 + 1` per
+/// row), and the sum of squares of the detrended heights.
+fn row_spectra(map: &HeightMap, trend: &Trend, wx: &[f64], wy: &[f64]) -> (Vec<Complex64>, f64) {
+    let (nx, ny) = (map.nx, map.ny);
+    let half = nx / 2 + 1;
+    let fx = FftPlanner::new().plan_fft_forward(nx);
+    let mut spec = vec![Complex64::new(0.0, 0.0); ny * half];
+    let mut rms_sum = 0.0;
+    spec.par_chunks_mut(half)
+        .enumerate()
+        .map(|(iy, out)| {
+            let row = map.row(iy);
+            let mut buf: Vec<Complex64> = Vec::with_capacity(nx);
+            let mut sq = 0.0;
+            for ix in 0..nx {
+                let v = row[ix] - trend.at(ix, iy);
+                sq += v * v;
+                buf.push(Complex64::new(v * wx[ix] * wy[iy], 0.0));
+            }
+            fx.process(&mut buf);
+            out.copy_from_slice(&buf[..half]);
+            sq
+        })
+        .collect::<Vec<f64>>()
+        .iter()
+        .for_each(|s| rms_sum += s);
+    (spec, rms_sum)
+}
+
+/// Column FFTs of the half spectrum, each mode binned as it comes: `norm` turns |H|² into C,
+/// `empty` is the (empty) binning to fill.
+fn column_bins(map: &HeightMap, spec: &[Complex64], norm: f64, empty: &Bins) -> Bins {
+    let (nx, ny) = (map.nx, map.ny);
+    let half = nx / 2 + 1;
+    let fy = FftPlanner::new().plan_fft_forward(ny);
+    let (dqx, dqy) = (
+        2.0 * PI / (nx as f64 * map.dx),
+        2.0 * PI / (ny as f64 * map.dy),
+    );
+    let cell = dqx * dqy;
+    // Columns in fixed blocks, each binned on its own, merged in block order: the sums do not
+    // depend on the thread count or scheduling.
+    const BLOCK: usize = 16;
+    (0..half)
+        .into_par_iter()
+        .chunks(BLOCK)
+        .map(|block| {
+            let mut bins = empty.clone();
+            let mut col = vec![Complex64::new(0.0, 0.0); ny];
+            for kx in block {
+                for iy in 0..ny {
+                    col[iy] = spec[iy * half + kx];
+                }
+                fy.process(&mut col);
+                let mult = if kx == 0 || (nx.is_multiple_of(2) && kx == nx / 2) {
+                    1.0
+                } else {
+                    2.0
+                };
+                let qx = kx as f64 * dqx;
+                for (ky, v) in col.iter().enumerate() {
+                    let fyk = if ky <= ny / 2 {
+                        ky as f64
+                    } else {
+                        ky as f64 - ny as f64
+                    };
+                    let q = qx.hypot(fyk * dqy);
+                    if q == 0.0 {
+                        continue;
+                    }
+                    bins.add(q, v.norm_sqr() * norm, cell, mult);
+                }
+            }
+            bins
+        })
+        .collect::<Vec<Bins>>()
+        .into_iter()
+        .fold(empty.clone(), Bins::merge)
 }
 
 /// The PSD of a height map.
@@ -282,40 +419,13 @@ pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Erro
         Window::Hann
     });
     let mut steps = Vec::new();
-
-    // Detrend: coefficients of the products P_i(x) P_j(y), i + j ≤ degree.
     let deg = detrend.degree();
-    let px = orthogonal_polys(nx, deg);
-    let py = orthogonal_polys(ny, deg);
-    let mut terms: Vec<(usize, usize, f64)> = Vec::new();
-    for (i, pxi) in px.iter().enumerate() {
-        for (j, pyj) in py.iter().enumerate() {
-            if i + j > deg {
-                continue;
-            }
-            // Summed in row order after the parallel map: the same bits whatever the threads.
-            let num: f64 = (0..ny)
-                .into_par_iter()
-                .map(|iy| pyj[iy] * dot(map.row(iy), pxi))
-                .collect::<Vec<f64>>()
-                .iter()
-                .sum();
-            let c = num / (dot(pxi, pxi) * dot(pyj, pyj));
-            terms.push((i, j, c));
-        }
-    }
+    let trend = Trend::fit(map, deg);
     steps.push(
         format!("detrend: {detrend:?} (least-squares polynomial of degree {deg})").to_lowercase(),
     );
-
-    let (wx, msx) = match window {
-        Window::Hann => hann(nx),
-        Window::None => (vec![1.0; nx], 1.0),
-    };
-    let (wy, msy) = match window {
-        Window::Hann => hann(ny),
-        Window::None => (vec![1.0; ny], 1.0),
-    };
+    let (wx, msx) = window_of(window, nx);
+    let (wy, msy) = window_of(window, ny);
     steps.push(match window {
         Window::Hann => format!(
             "window: hann (separable), power loss corrected by 1/<w^2> = {:.4}",
@@ -323,40 +433,10 @@ pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Erro
         ),
         Window::None => "window: none".into(),
     });
-
-    // Row FFTs into the half spectrum.
-    let half = nx / 2 + 1;
-    let mut planner = FftPlanner::new();
-    let fx = planner.plan_fft_forward(nx);
-    let fy = planner.plan_fft_forward(ny);
-    let mut spec = vec![Complex64::new(0.0, 0.0); ny * half];
-    let mut rms_sum = 0.0;
-    spec.par_chunks_mut(half)
-        .enumerate()
-        .map(|(iy, out)| {
-            let row = map.row(iy);
-            let mut buf: Vec<Complex64> = Vec::with_capacity(nx);
-            let mut sq = 0.0;
-            for ix in 0..nx {
-                let trend: f64 = terms
-                    .iter()
-                    .map(|&(i, j, c)| c * px[i][ix] * py[j][iy])
-                    .sum();
-                let v = row[ix] - trend;
-                sq += v * v;
-                buf.push(Complex64::new(v * wx[ix] * wy[iy], 0.0));
-            }
-            fx.process(&mut buf);
-            out.copy_from_slice(&buf[..half]);
-            sq
-        })
-        .collect::<Vec<f64>>()
-        .iter()
-        .for_each(|s| rms_sum += s);
+    let (spec, rms_sum) = row_spectra(map, &trend, &wx, &wy);
     let h_rms = (rms_sum / (nx * ny) as f64).sqrt();
     steps.push(format!("fft: {nx} x {ny} (rustfft, half spectrum kx >= 0)"));
 
-    // Column FFTs, binned on the fly.
     let (lx, ly) = (nx as f64 * map.dx, ny as f64 * map.dy);
     let (dqx, dqy) = (2.0 * PI / lx, 2.0 * PI / ly);
     // A window blurs each mode with its neighbours; the first mode then also leaks into the
@@ -372,46 +452,8 @@ pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Erro
         ));
     }
     let norm = map.dx * map.dy / ((2.0 * PI).powi(2) * (nx * ny) as f64 * msx * msy);
-    let cell = dqx * dqy;
     let ppd = opts.points_per_decade;
-    // Columns in fixed blocks, each binned on its own, merged in block order: the sums do not
-    // depend on the thread count or scheduling.
-    const BLOCK: usize = 16;
-    let bins = (0..half)
-        .into_par_iter()
-        .chunks(BLOCK)
-        .map(|block| {
-            let mut bins = Bins::new(q_lo, q_hi, ppd);
-            let mut col = vec![Complex64::new(0.0, 0.0); ny];
-            for kx in block {
-                for iy in 0..ny {
-                    col[iy] = spec[iy * half + kx];
-                }
-                fy.process(&mut col);
-                let mult = if kx == 0 || (nx.is_multiple_of(2) && kx == nx / 2) {
-                    1.0
-                } else {
-                    2.0
-                };
-                let qx = kx as f64 * dqx;
-                for (ky, v) in col.iter().enumerate() {
-                    let fyk = if ky <= ny / 2 {
-                        ky as f64
-                    } else {
-                        ky as f64 - ny as f64
-                    };
-                    let q = qx.hypot(fyk * dqy);
-                    if q == 0.0 {
-                        continue;
-                    }
-                    bins.add(q, v.norm_sqr() * norm, cell, mult);
-                }
-            }
-            bins
-        })
-        .collect::<Vec<Bins>>()
-        .into_iter()
-        .fold(Bins::new(q_lo, q_hi, ppd), Bins::merge);
+    let bins = column_bins(map, &spec, norm, &Bins::new(q_lo, q_hi, ppd));
     drop(spec);
     steps.push(format!(
         "radial average: log bins, {ppd} per decade, from q = {q_lo:.4e} 1/m"
