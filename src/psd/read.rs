@@ -23,7 +23,7 @@
 //!
 //! Limits: a file of at most [`MAX_FILE_BYTES`] (64 MiB, about a million rows) with at most
 //! [`MAX_POINTS`] points, and a 1D PSD of at most [`MAX_POINTS_1D`] points: its conversion
-//! costs O(n²) quadratures, about a second on two cores at that size.
+//! costs O(n²) quadratures (each point integrates over all points above it).
 
 use crate::error::Error;
 use crate::psd::Tabulated;
