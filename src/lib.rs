@@ -28,6 +28,7 @@ pub mod report;
 pub mod scene;
 mod simd;
 pub mod special;
+pub mod textio;
 pub mod tomlin;
 pub mod topography;
 pub mod units;

@@ -5,7 +5,7 @@
 //! slope, rms curvature, kept q-range, share of h_rms² outside it).
 
 use coatcheck::Error;
-use coatcheck::topography::convert::Conversion;
+use coatcheck::psd::abel::Conversion;
 use coatcheck::topography::io::HeightKind;
 use coatcheck::topography::spectrum::{Detrend, PsdOptions, TopographyPsd, Window};
 use coatcheck::topography::{HeightFileOptions, psd_of_file};

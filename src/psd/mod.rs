@@ -13,6 +13,7 @@
 //! between the spectrum's own knots (its data points, q0, q_r, q1, or steps of Q/2 across the
 //! Gaussian band), so no feature of the data is smoothed away.
 
+pub mod abel;
 pub mod read;
 
 use crate::error::Error;

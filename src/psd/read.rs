@@ -1,32 +1,34 @@
-//! Reading a roughness spectrum from a text file as users have them (issue 4).
+//! Reading a roughness spectrum from a text file as users have them.
 //!
-//! The file is a table of numbers with an optional header line:
-//! - comment lines start with `#`, `%` or `//`; blank lines are skipped; a UTF-8 BOM and
-//!   Windows (CRLF) line ends are accepted;
-//! - the separator is detected on the first non-comment line: tab, then `;`, then `,`, else
-//!   runs of whitespace. With tab, `;` or whitespace separators a decimal comma (`1,5e-20`) is
-//!   read as a decimal point;
-//! - a first line with a field that is not a number is the header. Header fields name the
-//!   column and may carry its unit in brackets: `q (1/m)`, `q [1/um]`, `C (m^4)`, `C [um^4]`,
-//!   `PSD (nm^3)`. Units in [`ReadOptions`] (command-line flags) override the header's, with a
-//!   warning when they differ;
-//! - the columns are chosen by name or 1-based index ([`Column`]); by default the first header
-//!   field named like a wavenumber (`q…`, `k…`, `wavenumber`, `wavevector`) and the first named
-//!   like a spectrum (`C…`, `PSD…`, `power…`), else columns 1 and 2. A column that looks like a
-//!   spatial frequency or a wavelength is refused: q here is the angular wavenumber 2π/λ.
+//! The file is a table of numbers with an optional header line, read as [`crate::textio`]
+//! describes (comments, line ends, separators, decimal commas). Header fields name the column
+//! and may carry its unit in brackets: `q (1/m)`, `q [1/um]`, `C (m^4)`, `C [um^4]`,
+//! `PSD (nm^3)`. Units in [`ReadOptions`] (command-line flags) override the header's, with a
+//! warning when they differ.
+//!
+//! Column choice:
+//! - by name or 1-based index ([`Column`]); by default the first header field named like a wavenumber (`q…`, `k…`, `wavenumber`, `wavevector`) and the first named
+//!   like a spectrum (`C…`, `PSD…`, `power…`), else columns 1 and 2;
+//! - a column that looks like a spatial frequency or a wavelength is refused: q here is the
+//!   angular wavenumber 2π/λ.
 //!
 //! The C column is a 2D PSD in m^4 (the theory's C(q), notes.md) unless its unit is a length
 //! cubed or [`ReadOptions::kind`] says [`PsdKind::OneD`]: then it is the one-sided 1D PSD of a
 //! line scan in m^3 (h_rms² = ∫_0^∞ C1D dq) and is converted to the isotropic 2D PSD with the
-//! exact inverse Abel transform ([`crate::topography::convert`]).
+//! exact inverse Abel transform ([`crate::psd::abel`]).
 //!
 //! Data are checked, not repaired: a non-number, a non-positive or non-finite q or C, a
 //! duplicate q, too few columns or fewer than two points is an [`Error::Input`] naming the file,
 //! the line and what was expected. Unsorted q is sorted, with a warning.
+//!
+//! Limits: a file of at most [`MAX_FILE_BYTES`] (64 MiB, about a million rows) with at most
+//! [`MAX_POINTS`] points, and a 1D PSD of at most [`MAX_POINTS_1D`] points: its conversion
+//! costs O(n²) quadratures (each point integrates over all points above it).
 
 use crate::error::Error;
 use crate::psd::Tabulated;
-use crate::topography::convert::{self, Conversion};
+use crate::psd::abel::{self, Conversion};
+use crate::textio::{self, Header, Sep};
 use crate::units::{Dim, unit_scale};
 use std::path::Path;
 use std::str::FromStr;
@@ -88,161 +90,19 @@ pub struct ReadOptions {
     pub conversion: Conversion,
 }
 
+/// The largest spectrum file read: 64 MiB.
+pub const MAX_FILE_BYTES: u64 = 64 << 20;
+/// The most points a spectrum file may hold.
+pub const MAX_POINTS: usize = 1_000_000;
+/// The most points of a 1D PSD (converted to 2D in O(n²)).
+pub const MAX_POINTS_1D: usize = 10_000;
+
 /// Read a spectrum file into a validated 2D [`Tabulated`] spectrum (SI: q in 1/m, C in m^4),
 /// with warnings (sorting, unit overrides, 1D→2D conversion) for the caller to print.
 pub fn read_spectrum(path: &Path, opts: &ReadOptions) -> Result<(Tabulated, Vec<String>), Error> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let text = decode_utf8(&bytes, path)?;
+    let bytes = textio::read_capped(path, MAX_FILE_BYTES, "a spectrum")?;
+    let text = textio::decode_utf8(&bytes, path)?;
     parse_spectrum(text, path, opts)
-}
-
-/// Bytes as UTF-8 text without a BOM; invalid UTF-8 is an error naming its line.
-pub(crate) fn decode_utf8<'a>(bytes: &'a [u8], path: &Path) -> Result<&'a str, Error> {
-    let text = std::str::from_utf8(bytes).map_err(|e| Error::Input {
-        path: path.to_path_buf(),
-        line: 1 + bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count(),
-        msg: "the file is not UTF-8 text".into(),
-    })?;
-    Ok(text.strip_prefix('\u{feff}').unwrap_or(text))
-}
-
-/// The field separator of a table.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Sep {
-    Char(char),
-    Whitespace,
-}
-
-impl Sep {
-    /// Detect from the first content line: tab, `;`, `,`, else whitespace.
-    pub(crate) fn detect(line: &str) -> Self {
-        for c in ['\t', ';', ','] {
-            if line.contains(c) {
-                return Sep::Char(c);
-            }
-        }
-        Sep::Whitespace
-    }
-
-    /// Split a line into trimmed fields (surrounding double quotes removed).
-    pub(crate) fn split<'a>(&self, line: &'a str) -> Vec<&'a str> {
-        match self {
-            Sep::Char(c) => line.split(*c).map(unquote).collect(),
-            Sep::Whitespace => line.split_whitespace().map(unquote).collect(),
-        }
-    }
-
-    /// Fields `a` and `b` of a line as [`Sep::split`] gives them, when it has at least `need`
-    /// (> a, b) fields; without collecting the line (the rows of a 1000-line file).
-    pub(crate) fn pick<'a>(
-        &self,
-        line: &'a str,
-        a: usize,
-        b: usize,
-        need: usize,
-    ) -> Option<(&'a str, &'a str)> {
-        fn first<'a>(
-            mut fields: impl Iterator<Item = &'a str>,
-            a: usize,
-            b: usize,
-            need: usize,
-        ) -> Option<(&'a str, &'a str)> {
-            let (mut fa, mut fb) = ("", "");
-            for i in 0..need {
-                let f = unquote(fields.next()?);
-                if i == a {
-                    fa = f;
-                }
-                if i == b {
-                    fb = f;
-                }
-            }
-            Some((fa, fb))
-        }
-        match self {
-            Sep::Char(c) => first(line.split(*c), a, b, need),
-            Sep::Whitespace => first(line.split_whitespace(), a, b, need),
-        }
-    }
-
-    /// Parse a number; a decimal comma is accepted when the separator is not a comma.
-    pub(crate) fn number(&self, field: &str) -> Option<f64> {
-        match field.parse::<f64>() {
-            Ok(v) => Some(v),
-            Err(_) if *self != Sep::Char(',') && field.contains(',') && !field.contains('.') => {
-                field.replacen(',', ".", 1).parse().ok()
-            }
-            Err(_) => None,
-        }
-    }
-}
-
-/// A field trimmed, with surrounding double quotes removed.
-fn unquote(f: &str) -> &str {
-    let f = f.trim();
-    f.strip_prefix('"')
-        .and_then(|g| g.strip_suffix('"'))
-        .unwrap_or(f)
-        .trim()
-}
-
-/// The content lines of a text (1-based line number, text without line end), skipping blank
-/// and comment lines.
-pub(crate) fn content_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
-    text.split('\n')
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.strip_suffix('\r').unwrap_or(l)))
-        .filter(|(_, l)| {
-            let t = l.trim();
-            !(t.is_empty() || t.starts_with('#') || t.starts_with('%') || t.starts_with("//"))
-        })
-}
-
-/// A header field split into its name and bracketed unit: `q (1/um)` → ("q", Some("1/um")).
-pub(crate) fn name_and_unit(field: &str) -> (String, Option<String>) {
-    for (open, close) in [('(', ')'), ('[', ']')] {
-        if let (Some(a), Some(b)) = (field.find(open), field.rfind(close))
-            && b > a
-        {
-            return (
-                field[..a].trim().to_string(),
-                Some(field[a + 1..b].trim().to_string()),
-            );
-        }
-    }
-    (field.trim().to_string(), None)
-}
-
-/// Header fields of a whitespace-separated header, with a bracketed unit glued back to its
-/// name (`q (1/m)  C (m^4)` is two fields, not four).
-pub(crate) fn header_fields(sep: Sep, line: &str) -> Vec<String> {
-    let raw = sep.split(line);
-    if sep != Sep::Whitespace {
-        return raw.into_iter().map(str::to_string).collect();
-    }
-    let mut out: Vec<String> = Vec::new();
-    for f in raw {
-        match out.last_mut() {
-            Some(prev) if f.starts_with('(') || f.starts_with('[') => {
-                prev.push(' ');
-                prev.push_str(f);
-            }
-            _ => out.push(f.to_string()),
-        }
-    }
-    out
-}
-
-struct Header {
-    line: usize,
-    names: Vec<String>,
-    units: Vec<Option<String>>,
 }
 
 fn looks_like_q(name: &str) -> bool {
@@ -266,48 +126,38 @@ fn looks_like_frequency_or_wavelength(name: &str) -> bool {
     n.contains("freq") || n.contains("wavelength") || n.contains("lambda") || n == "f"
 }
 
-/// Parse spectrum text (see [`read_spectrum`]); `path` only names the file in messages.
-pub fn parse_spectrum(
-    text: &str,
-    path: &Path,
-    opts: &ReadOptions,
-) -> Result<(Tabulated, Vec<String>), Error> {
-    let err = |line: usize, msg: String| Error::Input {
-        path: path.to_path_buf(),
-        line,
-        msg,
-    };
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut warnings = Vec::new();
-    let mut lines = content_lines(text).peekable();
-    let Some(&(first_line, first)) = lines.peek() else {
-        return Err(err(
-            1,
-            "no data: expected a header line and rows of q and C values".into(),
-        ));
-    };
-    let sep = Sep::detect(first);
-    let header = if sep.split(first).iter().any(|f| sep.number(f).is_none()) {
-        lines.next();
-        let fields = header_fields(sep, first);
-        let (names, units) = fields.iter().map(|f| name_and_unit(f)).unzip();
-        Some(Header {
-            line: first_line,
-            names,
-            units,
-        })
-    } else {
-        None
-    };
+/// What the parse knows about the file: its name, first content line and header.
+struct Ctx<'a> {
+    path: &'a Path,
+    first_line: usize,
+    header: Option<Header>,
+}
 
-    // Column choice.
-    let resolve = |col: &Option<Column>,
-                   what: &str,
-                   looks: fn(&str) -> bool,
-                   default: usize|
-     -> Result<(usize, bool), Error> {
-        match (col, &header) {
-            (Some(Column::Index(i)), Some(h)) if *i > h.names.len() => Err(err(
+impl Ctx<'_> {
+    fn err(&self, line: usize, msg: String) -> Error {
+        Error::Input {
+            path: self.path.to_path_buf(),
+            line,
+            msg,
+        }
+    }
+
+    /// The header's line, else the first content line.
+    fn hline(&self) -> usize {
+        self.header.as_ref().map_or(self.first_line, |h| h.line)
+    }
+
+    /// The 0-based column of q or C, and whether it was chosen (by the options or a name that
+    /// looks right) rather than defaulted.
+    fn column(
+        &self,
+        col: &Option<Column>,
+        what: &str,
+        looks: fn(&str) -> bool,
+        default: usize,
+    ) -> Result<(usize, bool), Error> {
+        match (col, &self.header) {
+            (Some(Column::Index(i)), Some(h)) if *i > h.names.len() => Err(self.err(
                 h.line,
                 format!(
                     "column {i} for {what} requested, but the header has only {} columns",
@@ -327,7 +177,7 @@ pub fn parse_spectrum(
                     })
                     .map(|i| (i, true))
                     .ok_or_else(|| {
-                        err(
+                        self.err(
                             h.line,
                             format!(
                                 "no column named '{name}' for {what}; the header has: {}",
@@ -336,8 +186,8 @@ pub fn parse_spectrum(
                         )
                     })
             }
-            (Some(Column::Name(name)), None) => Err(err(
-                first_line,
+            (Some(Column::Name(name)), None) => Err(self.err(
+                self.first_line,
                 format!(
                     "column '{name}' for {what} requested by name, but the file has no header line \
                      (use a 1-based column number)"
@@ -351,22 +201,31 @@ pub fn parse_spectrum(
                 .unwrap_or((default, false))),
             (None, None) => Ok((default, true)),
         }
-    };
-    let (qi, q_named) = resolve(&opts.q_col, "q", looks_like_q, 0)?;
-    let (ci, c_named) = resolve(&opts.c_col, "C", looks_like_c, 1)?;
-    if qi == ci {
-        return Err(err(
-            header.as_ref().map_or(first_line, |h| h.line),
-            format!(
-                "q and C are both read from column {}; choose different columns",
-                qi + 1
-            ),
-        ));
     }
-    if let Some(h) = &header {
+
+    /// The 0-based columns (q, C), with warnings for columns not named like q or C.
+    fn columns(
+        &self,
+        opts: &ReadOptions,
+        warnings: &mut Vec<String>,
+    ) -> Result<(usize, usize), Error> {
+        let (qi, q_named) = self.column(&opts.q_col, "q", looks_like_q, 0)?;
+        let (ci, c_named) = self.column(&opts.c_col, "C", looks_like_c, 1)?;
+        if qi == ci {
+            return Err(self.err(
+                self.hline(),
+                format!(
+                    "q and C are both read from column {}; choose different columns",
+                    qi + 1
+                ),
+            ));
+        }
+        let Some(h) = &self.header else {
+            return Ok((qi, ci));
+        };
         for (i, named, what) in [(qi, q_named, "q"), (ci, c_named, "C")] {
             let Some(name) = h.names.get(i) else {
-                return Err(err(
+                return Err(self.err(
                     h.line,
                     format!(
                         "the header has {} column(s), expected at least {} (for {what})",
@@ -378,14 +237,14 @@ pub fn parse_spectrum(
             if !named {
                 warnings.push(format!(
                     "{}:{}: no header name looks like {what}; reading {what} from column {} ('{name}')",
-                    path.display(),
+                    self.path.display(),
                     h.line,
                     i + 1
                 ));
             }
         }
         if opts.q_col.is_none() && looks_like_frequency_or_wavelength(&h.names[qi]) {
-            return Err(err(
+            return Err(self.err(
                 h.line,
                 format!(
                     "column '{}' looks like a spatial frequency or wavelength; expected the \
@@ -394,87 +253,114 @@ pub fn parse_spectrum(
                 ),
             ));
         }
+        Ok((qi, ci))
     }
 
-    // Units: flags override the header.
-    let header_unit = |i: usize| header.as_ref().and_then(|h| h.units[i].clone());
-    let hline = header.as_ref().map_or(first_line, |h| h.line);
-    let pick_unit = |flag: &Option<String>,
-                     from_header: Option<String>,
-                     what: &str,
-                     warnings: &mut Vec<String>| {
+    /// The unit of column `i`: the flag's, else the header's (a warning when they differ).
+    fn unit(
+        &self,
+        flag: &Option<String>,
+        i: usize,
+        what: &str,
+        warnings: &mut Vec<String>,
+    ) -> Option<String> {
+        let from_header = self.header.as_ref().and_then(|h| h.unit(i));
         match (flag, from_header) {
             (Some(f), Some(h)) => {
                 if f.replace(' ', "") != h.replace(' ', "") {
                     warnings.push(format!(
-                        "{}:{hline}: the header gives {what} in '{h}'; using '{f}' as requested",
-                        path.display()
+                        "{}:{}: the header gives {what} in '{h}'; using '{f}' as requested",
+                        self.path.display(),
+                        self.hline()
                     ));
                 }
                 Some(f.clone())
             }
             (Some(f), None) => Some(f.clone()),
-            (None, h) => h,
+            (None, h) => h.map(str::to_string),
         }
-    };
-    let q_unit = pick_unit(&opts.q_unit, header_unit(qi), "q", &mut warnings);
-    let c_unit = pick_unit(&opts.c_unit, header_unit(ci), "C", &mut warnings);
-    let q_scale = match &q_unit {
-        None => 1.0,
-        Some(u) => unit_scale(u, Dim::Length(-1)).map_err(|e| {
-            err(
-                hline,
-                format!("unit of q: {e}; expected a wavenumber unit such as 1/m or 1/um"),
-            )
-        })?,
-    };
-    let (c_scale, unit_kind) = match &c_unit {
-        None => (1.0, None),
-        Some(u) => {
-            if let Ok(s) = unit_scale(u, Dim::Length(4)) {
-                (s, Some(PsdKind::TwoD))
-            } else if let Ok(s) = unit_scale(u, Dim::Length(3)) {
-                (s, Some(PsdKind::OneD))
-            } else {
-                return Err(err(
+    }
+
+    /// The SI factors of q and C and whether C is a 2D or a 1D PSD.
+    fn scales(
+        &self,
+        opts: &ReadOptions,
+        (qi, ci): (usize, usize),
+        warnings: &mut Vec<String>,
+    ) -> Result<(f64, f64, PsdKind), Error> {
+        let hline = self.hline();
+        let q_unit = self.unit(&opts.q_unit, qi, "q", warnings);
+        let c_unit = self.unit(&opts.c_unit, ci, "C", warnings);
+        let q_scale = match &q_unit {
+            None => 1.0,
+            Some(u) => unit_scale(u, Dim::Length(-1)).map_err(|e| {
+                self.err(
+                    hline,
+                    format!("unit of q: {e}; expected a wavenumber unit such as 1/m or 1/um"),
+                )
+            })?,
+        };
+        let (c_scale, unit_kind) = match &c_unit {
+            None => (1.0, None),
+            Some(u) => {
+                if let Ok(s) = unit_scale(u, Dim::Length(4)) {
+                    (s, Some(PsdKind::TwoD))
+                } else if let Ok(s) = unit_scale(u, Dim::Length(3)) {
+                    (s, Some(PsdKind::OneD))
+                } else {
+                    return Err(self.err(
+                        hline,
+                        format!(
+                            "unit of C '{u}' is neither a length^4 (2D PSD, e.g. m^4, um^4) nor a \
+                             length^3 (1D PSD, e.g. m^3, nm^3)"
+                        ),
+                    ));
+                }
+            }
+        };
+        let kind = match (opts.kind, unit_kind) {
+            (Some(k), Some(u)) if k != u => {
+                let name = |k: PsdKind| match k {
+                    PsdKind::OneD => "1D",
+                    PsdKind::TwoD => "2D",
+                };
+                let unit = if u == PsdKind::OneD { "m^3" } else { "m^4" };
+                return Err(self.err(
                     hline,
                     format!(
-                        "unit of C '{u}' is neither a length^4 (2D PSD, e.g. m^4, um^4) nor a \
-                         length^3 (1D PSD, e.g. m^3, nm^3)"
+                        "C is in '{}', a {} ({unit}) unit, but a {} PSD was requested",
+                        c_unit.unwrap_or_default(),
+                        name(u),
+                        name(k)
                     ),
                 ));
             }
-        }
-    };
-    let kind = match (opts.kind, unit_kind) {
-        (Some(k), Some(u)) if k != u => {
-            return Err(err(
-                hline,
-                format!(
-                    "C is in '{}', a {} unit, but a {} PSD was requested",
-                    c_unit.unwrap_or_default(),
-                    if u == PsdKind::OneD {
-                        "1D (m^3)"
-                    } else {
-                        "2D (m^4)"
-                    },
-                    if k == PsdKind::OneD { "1D" } else { "2D" }
-                ),
-            ));
-        }
-        (Some(k), _) => k,
-        (None, Some(u)) => u,
-        (None, None) => PsdKind::TwoD,
-    };
+            (Some(k), _) => k,
+            (None, Some(u)) => u,
+            (None, None) => PsdKind::TwoD,
+        };
+        Ok((q_scale, c_scale, kind))
+    }
+}
 
-    // Rows.
+/// One data row in SI: q, C and the row's line.
+type Row = (f64, f64, usize);
+
+/// Read the data rows: q and C from columns `qi`, `ci`, scaled to SI, checked finite and > 0.
+fn read_rows<'t>(
+    ctx: &Ctx,
+    sep: Sep,
+    lines: impl Iterator<Item = (usize, &'t str)>,
+    (qi, ci): (usize, usize),
+    (q_scale, c_scale): (f64, f64),
+) -> Result<Vec<Row>, Error> {
     let need = qi.max(ci) + 1;
-    let mut rows: Vec<(f64, f64, usize)> = Vec::new();
-    let mut last_line = first_line;
+    let mut rows: Vec<Row> = Vec::new();
+    let mut last_line = ctx.first_line;
     for (ln, line) in lines {
         last_line = ln;
         let Some((q_text, c_text)) = sep.pick(line, qi, ci, need) else {
-            return Err(err(
+            return Err(ctx.err(
                 ln,
                 format!(
                     "expected at least {need} columns (q in column {}, C in column {}), found {}",
@@ -486,7 +372,7 @@ pub fn parse_spectrum(
         };
         let value = |i: usize, field: &str, what: &str| -> Result<f64, Error> {
             let v = sep.number(field).ok_or_else(|| {
-                err(
+                ctx.err(
                     ln,
                     format!(
                         "expected a number for {what} in column {}, found '{field}'",
@@ -495,7 +381,7 @@ pub fn parse_spectrum(
                 )
             })?;
             if !(v.is_finite() && v > 0.0) {
-                return Err(err(
+                return Err(ctx.err(
                     ln,
                     format!(
                         "{what} = {field} in column {}; expected a finite value > 0",
@@ -508,7 +394,7 @@ pub fn parse_spectrum(
         let q = value(qi, q_text, "q")? * q_scale;
         let c = value(ci, c_text, "C")? * c_scale;
         if !(q.is_finite() && q > 0.0 && c.is_finite() && c > 0.0) {
-            return Err(err(
+            return Err(ctx.err(
                 ln,
                 format!(
                     "q = {q_text}, C = {c_text} are q = {q:e} 1/m, C = {c:e} m^4 in SI units, \
@@ -516,10 +402,16 @@ pub fn parse_spectrum(
                 ),
             ));
         }
+        if rows.len() == MAX_POINTS {
+            return Err(ctx.err(
+                ln,
+                format!("more than {MAX_POINTS} points, the limit for a spectrum file"),
+            ));
+        }
         rows.push((q, c, ln));
     }
     if rows.len() < 2 {
-        return Err(err(
+        return Err(ctx.err(
             last_line,
             format!(
                 "found {} data row(s); expected at least 2 rows of q and C",
@@ -527,109 +419,130 @@ pub fn parse_spectrum(
             ),
         ));
     }
-    if let Some(w) = rows.windows(2).find(|w| w[1].0 <= w[0].0) {
-        let (a, b) = (w[0].2, w[1].2);
-        rows.sort_by(|x, y| x.0.total_cmp(&y.0));
-        if let Some(d) = rows.windows(2).find(|w| w[1].0 == w[0].0) {
-            let (l1, l2) = (d[0].2.min(d[1].2), d[0].2.max(d[1].2));
-            return Err(err(
-                l2,
-                format!(
-                    "duplicate q = {:e} 1/m (also on line {l1}); expected distinct q values",
-                    d[0].0
-                ),
-            ));
-        }
-        warnings.push(format!(
-            "{}:{b}: q is not increasing (line {b} after line {a}); the rows were sorted by q",
-            path.display()
-        ));
-    }
-    let (q, c): (Vec<f64>, Vec<f64>) = rows.iter().map(|r| (r.0, r.1)).unzip();
-    let line_of = |i: usize| rows[i].2;
-
-    let spectrum = match kind {
-        PsdKind::TwoD => Tabulated::new(q, c).map_err(|e| err(line_of(0), e.to_string()))?,
-        PsdKind::OneD => {
-            let n = q.len();
-            let conv = convert::c2d_from_c1d(&q, &c, opts.conversion).map_err(|e| {
-                let first = q
-                    .iter()
-                    .position(|&x| x >= 0.5 * q[n - 1])
-                    .unwrap_or(n - 2)
-                    .min(n - 2);
-                err(line_of(first), format!("1D PSD: {e}"))
-            })?;
-            if let Some(i) = conv
-                .c
-                .iter()
-                .position(|e| !(e.value.is_finite() && e.value > 0.0))
-            {
-                return Err(err(
-                    line_of(i),
-                    format!(
-                        "the 1D→2D conversion gives C = {:.3e} m^4 at q = {:.4e} 1/m; expected \
-                         C > 0 (a 1D PSD of an isotropic surface cannot rise this steeply to the right)",
-                        conv.c[i].value, conv.q[i]
-                    ),
-                ));
-            }
-            match conv.method {
-                Conversion::InverseAbel => warnings.push(format!(
-                    "{}: 1D PSD (m^3, one-sided) converted to the isotropic 2D PSD by the exact \
-                     inverse Abel transform; beyond q = {:.4e} 1/m C1D was continued as q^{:.3}, \
-                     which C in the last octave depends on (max quadrature error {:.1e})",
-                    path.display(),
-                    q[n - 1],
-                    conv.tail_exponent.unwrap_or(f64::NAN),
-                    conv.max_rel_err()
-                )),
-                Conversion::PiQShortcut => warnings.push(format!(
-                    "{}: 1D PSD converted with the shortcut C = C1D/(πq), exact only for H = 1 \
-                     (27 % too high for H = 0.5)",
-                    path.display()
-                )),
-            }
-            conv.into_tabulated()
-                .map_err(|e| err(line_of(0), e.to_string()))?
-        }
-    };
-    Ok((spectrum, warnings))
+    Ok(rows)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn pick_gives_the_fields_split_gives() {
-        let lines = [
-            "1e5,2e-20",
-            " 1e5 , \"2e-20\" ,x",
-            "1e5;2,5e-20;;",
-            "a\tb\t\tc",
-            "  1e5   2e-20  3 ",
-            "\"q\" \"C\"",
-            "",
-            ",",
-            "1e5",
-        ];
-        for line in lines {
-            for sep in [
-                Sep::Char(','),
-                Sep::Char(';'),
-                Sep::Char('\t'),
-                Sep::Whitespace,
-            ] {
-                let all = sep.split(line);
-                for need in 1..5 {
-                    for (a, b) in (0..need).flat_map(|a| (0..need).map(move |b| (a, b))) {
-                        let got = sep.pick(line, a, b, need);
-                        let want = (all.len() >= need).then(|| (all[a], all[b]));
-                        assert_eq!(got, want, "{line:?} {sep:?} need {need} ({a}, {b})");
-                    }
-                }
-            }
-        }
+/// Rows in increasing q: sorted with a warning if they were not; a duplicate q is an error.
+fn sort_rows(ctx: &Ctx, rows: &mut [Row], warnings: &mut Vec<String>) -> Result<(), Error> {
+    let Some(w) = rows.windows(2).find(|w| w[1].0 <= w[0].0) else {
+        return Ok(());
+    };
+    let (a, b) = (w[0].2, w[1].2);
+    rows.sort_by(|x, y| x.0.total_cmp(&y.0));
+    if let Some(d) = rows.windows(2).find(|w| w[1].0 == w[0].0) {
+        let (l1, l2) = (d[0].2.min(d[1].2), d[0].2.max(d[1].2));
+        return Err(ctx.err(
+            l2,
+            format!(
+                "duplicate q = {:e} 1/m (also on line {l1}); expected distinct q values",
+                d[0].0
+            ),
+        ));
     }
+    warnings.push(format!(
+        "{}:{b}: q is not increasing (line {b} after line {a}); the rows were sorted by q",
+        ctx.path.display()
+    ));
+    Ok(())
+}
+
+/// A 1D PSD's rows converted to the isotropic 2D PSD, with the conversion's warning.
+fn convert_1d(
+    ctx: &Ctx,
+    rows: &[Row],
+    conversion: Conversion,
+    warnings: &mut Vec<String>,
+) -> Result<Tabulated, Error> {
+    let (q, c): (Vec<f64>, Vec<f64>) = rows.iter().map(|r| (r.0, r.1)).unzip();
+    let n = q.len();
+    if n > MAX_POINTS_1D {
+        return Err(ctx.err(
+            rows[MAX_POINTS_1D].2,
+            format!(
+                "{n} points of a 1D PSD; its conversion to 2D takes at most {MAX_POINTS_1D} \
+                 (bin or thin the data)"
+            ),
+        ));
+    }
+    let line_of = |i: usize| rows[i].2;
+    let conv = abel::c2d_from_c1d(&q, &c, conversion).map_err(|e| {
+        let first = q
+            .iter()
+            .position(|&x| x >= 0.5 * q[n - 1])
+            .unwrap_or(n - 2)
+            .min(n - 2);
+        ctx.err(line_of(first), format!("1D PSD: {e}"))
+    })?;
+    if let Some(i) = conv
+        .c
+        .iter()
+        .position(|e| !(e.value.is_finite() && e.value > 0.0))
+    {
+        return Err(ctx.err(
+            line_of(i),
+            format!(
+                "the 1D→2D conversion gives C = {:.3e} m^4 at q = {:.4e} 1/m; expected \
+                 C > 0 (a 1D PSD of an isotropic surface cannot rise this steeply to the right)",
+                conv.c[i].value, conv.q[i]
+            ),
+        ));
+    }
+    warnings.push(match conv.method {
+        Conversion::InverseAbel => format!(
+            "{}: 1D PSD (m^3, one-sided) converted to the isotropic 2D PSD by the exact \
+             inverse Abel transform; beyond q = {:.4e} 1/m C1D was continued as q^{:.3}, \
+             which C in the last octave depends on (max quadrature error {:.1e})",
+            ctx.path.display(),
+            q[n - 1],
+            conv.tail_exponent.unwrap_or(f64::NAN),
+            conv.max_rel_err()
+        ),
+        Conversion::PiQShortcut => format!(
+            "{}: 1D PSD converted with the shortcut C = C1D/(πq), exact only for H = 1 \
+             (27 % too high for H = 0.5)",
+            ctx.path.display()
+        ),
+    });
+    conv.into_tabulated()
+        .map_err(|e| ctx.err(line_of(0), e.to_string()))
+}
+
+/// Parse spectrum text (see [`read_spectrum`]); `path` only names the file in messages.
+pub fn parse_spectrum(
+    text: &str,
+    path: &Path,
+    opts: &ReadOptions,
+) -> Result<(Tabulated, Vec<String>), Error> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut warnings = Vec::new();
+    let mut lines = textio::content_lines(text).peekable();
+    let Some(&(first_line, first)) = lines.peek() else {
+        return Err(Error::Input {
+            path: path.to_path_buf(),
+            line: 1,
+            msg: "no data: expected a header line and rows of q and C values".into(),
+        });
+    };
+    let sep = Sep::detect(first);
+    let header = sep.is_header(first).then(|| {
+        lines.next();
+        Header::parse(sep, first, first_line)
+    });
+    let ctx = Ctx {
+        path,
+        first_line,
+        header,
+    };
+    let cols = ctx.columns(opts, &mut warnings)?;
+    let (q_scale, c_scale, kind) = ctx.scales(opts, cols, &mut warnings)?;
+    let mut rows = read_rows(&ctx, sep, lines, cols, (q_scale, c_scale))?;
+    sort_rows(&ctx, &mut rows, &mut warnings)?;
+    let spectrum = match kind {
+        PsdKind::TwoD => {
+            let (q, c) = rows.iter().map(|r| (r.0, r.1)).unzip();
+            Tabulated::new(q, c).map_err(|e| ctx.err(rows[0].2, e.to_string()))?
+        }
+        PsdKind::OneD => convert_1d(&ctx, &rows, opts.conversion, &mut warnings)?,
+    };
+    Ok((spectrum, warnings))
 }

@@ -10,20 +10,35 @@
 //! the line, y down the file), with the pixel size given in [`MapOptions`] or in the metadata
 //! comment that [`write_height_map`] writes:
 //! `# coatcheck height map: nx = 256, ny = 256, dx = 1e-6 m, dy = 1e-6 m, periodic = true`.
-//! Maps are read line by line (never the whole text at once), so a 4096 × 4096 map costs its
-//! heights (128 MiB) and little more.
+//! When the metadata gives nx and ny, the file must hold exactly that grid (a map cut short is
+//! an error, not a smaller periodic map). Maps are read line by line, never the whole text at
+//! once.
 //!
-//! Separators, comments, BOM and CRLF are handled as in [`crate::psd::read`]. Every malformed
-//! input is an [`Error::Input`] naming the file, the line and what was expected; heights must
-//! be finite (missing points are not interpolated). Writers go through a temporary file in the
-//! same directory and a rename, so an output is either complete or absent.
+//! Text conventions (comments, line ends, separators, BOM) are those of [`crate::textio`].
+//! Every malformed input is an [`Error::Input`] naming the file, the line and what was
+//! expected; heights must be finite (missing points are not interpolated).
+//!
+//! Limits, from the memory a desktop run can spare (about 1 GiB) and a run of seconds: at most
+//! [`MAX_HEIGHTS`] = 2²⁶ heights in a map or in all scans of a file (512 MiB of heights; a map's
+//! spectrum needs as much again), a line-scan file of at most [`MAX_PROFILE_BYTES`] (read
+//! whole) and a map file of at most [`MAX_MAP_BYTES`] (streamed).
+//!
+//! Writers go through a temporary file in the same directory and a rename, so an output is
+//! either complete or absent.
 
 use super::{HeightMap, Profile};
 use crate::error::Error;
-use crate::psd::read::{Sep, content_lines, decode_utf8, header_fields, name_and_unit};
+use crate::textio::{self, Header, LineReader, Sep};
 use crate::units::{Dim, parse_quantity, unit_scale};
-use std::io::{BufRead, BufReader};
+use std::io::{BufReader, Read};
 use std::path::Path;
+
+/// The most heights in a map or in all line scans of one file (2²⁶, 512 MiB as f64).
+pub const MAX_HEIGHTS: usize = 1 << 26;
+/// The largest line-scan file (read whole): 1 GiB.
+pub const MAX_PROFILE_BYTES: u64 = 1 << 30;
+/// The largest height-map file (streamed): 4 GiB, 2²⁶ heights of up to 64 characters.
+pub const MAX_MAP_BYTES: u64 = 4 << 30;
 
 /// How to read line scans. Values are SI (m); units are strings like `um`.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -60,8 +75,10 @@ pub enum HeightKind {
 /// Key–value metadata from a `# coatcheck …: k = v, …` comment.
 #[derive(Debug, Clone, Default, PartialEq)]
 struct Meta {
+    /// The comment's line (0: none).
+    line: usize,
     kind: Option<HeightKind>,
-    /// Map size, used only to reserve memory up front.
+    /// Map size: the grid the file must hold.
     nx: Option<usize>,
     ny: Option<usize>,
     dx: Option<f64>,
@@ -79,6 +96,7 @@ fn parse_meta(line: &str, path: &Path, ln: usize) -> Result<Option<Meta>, Error>
         return Ok(None);
     };
     let mut m = Meta {
+        line: ln,
         kind: match what.trim() {
             "height map" => Some(HeightKind::Map),
             "line scans" => Some(HeightKind::Lines),
@@ -103,6 +121,12 @@ fn parse_meta(line: &str, path: &Path, ln: usize) -> Result<Option<Meta>, Error>
                 ))
             })
         };
+        let count = |v: &str| {
+            v.parse::<usize>()
+                .ok()
+                .filter(|&n| n > 0)
+                .ok_or_else(|| bad(format!("metadata {k} = '{v}'; expected a whole number > 0")))
+        };
         match k {
             "dx" => m.dx = Some(length(v)?),
             "dy" => m.dy = Some(length(v)?),
@@ -112,10 +136,17 @@ fn parse_meta(line: &str, path: &Path, ln: usize) -> Result<Option<Meta>, Error>
                 })?)
             }
             "z unit" => m.z_unit = Some(v.to_string()),
-            "nx" => m.nx = v.parse().ok(),
-            "ny" => m.ny = v.parse().ok(),
+            "nx" => m.nx = Some(count(v)?),
+            "ny" => m.ny = Some(count(v)?),
             _ => {}
         }
+    }
+    if let (Some(a), Some(b)) = (m.nx, m.ny)
+        && a.saturating_mul(b) > MAX_HEIGHTS
+    {
+        return Err(bad(format!(
+            "metadata grid {a} x {b}; expected at most {MAX_HEIGHTS} heights"
+        )));
     }
     Ok(Some(m))
 }
@@ -127,110 +158,109 @@ fn io_err(path: &Path, source: std::io::Error) -> Error {
     }
 }
 
+fn open_lines(path: &Path, limit: u64) -> Result<LineReader<'_, impl std::io::BufRead>, Error> {
+    let f = std::fs::File::open(path).map_err(|e| io_err(path, e))?;
+    Ok(LineReader::new(
+        BufReader::with_capacity(1 << 20, f.take(limit)),
+        path,
+    ))
+}
+
 /// Look at a file's metadata and first content line to tell line scans from a map: the
 /// metadata decides; else a header line means line scans; else unknown (`None`).
 pub fn sniff(path: &Path) -> Result<Option<HeightKind>, Error> {
-    let f = std::fs::File::open(path).map_err(|e| io_err(path, e))?;
-    let mut r = BufReader::new(f);
-    let mut buf = Vec::new();
-    let mut ln = 0;
-    loop {
-        buf.clear();
-        if r.read_until(b'\n', &mut buf).map_err(|e| io_err(path, e))? == 0 {
-            return Ok(None);
-        }
-        ln += 1;
-        let text = String::from_utf8_lossy(&buf);
-        let line = text.trim_start_matches('\u{feff}').trim();
+    let mut r = open_lines(path, MAX_MAP_BYTES)?;
+    while let Some((ln, text)) = r.next_line()? {
+        let line = text.trim();
         if line.is_empty() {
             continue;
         }
-        if line.starts_with('#') || line.starts_with('%') || line.starts_with("//") {
+        if textio::is_comment(line) {
             if let Some(m) = parse_meta(line, path, ln)? {
                 return Ok(m.kind);
             }
             continue;
         }
-        let sep = Sep::detect(line);
-        let has_header = sep.split(line).iter().any(|f| sep.number(f).is_none());
+        let has_header = Sep::detect(line).is_header(line);
         return Ok(has_header.then_some(HeightKind::Lines));
     }
+    Ok(None)
 }
 
 /// Read line scans (see the module docs).
 pub fn read_profile(path: &Path, opts: &ProfileOptions) -> Result<Profile, Error> {
-    let bytes = std::fs::read(path).map_err(|e| io_err(path, e))?;
-    let text = decode_utf8(&bytes, path)?;
+    let bytes = textio::read_capped(path, MAX_PROFILE_BYTES, "line scans")?;
+    let text = textio::decode_utf8(&bytes, path)?;
     parse_profile(text, path, opts)
 }
 
-/// Parse line-scan text; `path` only names the file in messages.
-pub fn parse_profile(text: &str, path: &Path, opts: &ProfileOptions) -> Result<Profile, Error> {
-    let err = |line: usize, msg: String| Error::Input {
+fn input_err(path: &Path, line: usize, msg: String) -> Error {
+    Error::Input {
         path: path.to_path_buf(),
         line,
         msg,
-    };
-    let mut meta = Meta::default();
-    for (ln, l) in text.split('\n').enumerate() {
-        if let Some(m) = parse_meta(l.trim_end_matches('\r'), path, ln + 1)? {
-            meta = m;
-            break;
-        }
     }
-    let mut lines = content_lines(text).peekable();
-    let Some(&(first_line, first)) = lines.peek() else {
-        return Err(err(1, "no data: expected rows of x and z, or of z".into()));
-    };
-    let sep = Sep::detect(first);
-    let header = if sep.split(first).iter().any(|f| sep.number(f).is_none()) {
-        lines.next();
-        Some(
-            header_fields(sep, first)
-                .iter()
-                .map(|f| name_and_unit(f))
-                .collect::<Vec<_>>(),
-        )
-    } else {
-        None
-    };
-    let dx_given = opts.dx.or(meta.dx);
-    let has_x = match &header {
-        Some(h) => {
-            let n = h[0].0.to_lowercase();
-            n.starts_with('x') || n.starts_with("pos") || n.starts_with("dist")
-        }
-        None => dx_given.is_none(),
-    };
-    let hline = if header.is_some() { first_line } else { 0 };
-    let unit = |flag: &Option<String>, col: usize, what: &str| -> Result<f64, Error> {
+}
+
+/// The columns of a line-scan file: its header, whether column 1 is x, and SI factors.
+struct Columns {
+    sep: Sep,
+    header: Option<Header>,
+    first_line: usize,
+    has_x: bool,
+    x_scale: f64,
+}
+
+impl Columns {
+    /// The SI factor of column `col` (x or z): the flag's unit, else the header's, else (for
+    /// z) the metadata's.
+    fn scale(
+        &self,
+        path: &Path,
+        flag: &Option<String>,
+        meta_unit: Option<&str>,
+        col: usize,
+        what: &str,
+    ) -> Result<f64, Error> {
         let u = flag
-            .clone()
-            .or_else(|| header.as_ref().and_then(|h| h.get(col)?.1.clone()))
-            .or_else(|| meta.z_unit.clone().filter(|_| what == "z"));
+            .as_deref()
+            .or_else(|| self.header.as_ref()?.unit(col))
+            .or(meta_unit);
         match u {
             None => Ok(1.0),
-            Some(u) => unit_scale(&u, Dim::Length(1)).map_err(|e| {
-                err(
-                    hline.max(1),
+            Some(u) => unit_scale(u, Dim::Length(1)).map_err(|e| {
+                let line = self.header.as_ref().map_or(1, |h| h.line);
+                input_err(
+                    path,
+                    line,
                     format!("unit of {what}: {e}; expected a length unit such as m, um or nm"),
                 )
             }),
         }
-    };
-    let x_scale = if has_x {
-        unit(&opts.x_unit, 0, "x")?
-    } else {
-        1.0
-    };
-    let z0 = usize::from(has_x);
-    let mut cols: Option<usize> = header.as_ref().map(Vec::len);
+    }
+}
+
+/// The x positions (SI, with their lines) and the scans (SI) of a line-scan file's rows.
+type ScanData = (Vec<(f64, usize)>, Vec<Vec<f64>>);
+
+fn read_scan_rows<'t>(
+    path: &Path,
+    cols: &Columns,
+    lines: impl Iterator<Item = (usize, &'t str)>,
+    opts: &ProfileOptions,
+    meta: &Meta,
+) -> Result<ScanData, Error> {
+    let err = |line: usize, msg: String| input_err(path, line, msg);
+    let sep = cols.sep;
+    let z0 = usize::from(cols.has_x);
+    let mut ncol: Option<usize> = cols.header.as_ref().map(|h| h.names.len());
     let mut x: Vec<(f64, usize)> = Vec::new();
     let mut scans: Vec<Vec<f64>> = Vec::new();
     let mut z_scales: Vec<f64> = Vec::new();
+    let mut heights = 0usize;
     for (ln, line) in lines {
         let fields = sep.split(line);
-        let ncol = *cols.get_or_insert(fields.len());
+        let ncol = *ncol.get_or_insert(fields.len());
         if fields.len() != ncol {
             return Err(err(
                 ln,
@@ -247,8 +277,15 @@ pub fn parse_profile(text: &str, path: &Path, opts: &ProfileOptions) -> Result<P
         if scans.is_empty() {
             scans = vec![Vec::new(); ncol - z0];
             z_scales = (z0..ncol)
-                .map(|c| unit(&opts.z_unit, c, "z"))
+                .map(|c| cols.scale(path, &opts.z_unit, meta.z_unit.as_deref(), c, "z"))
                 .collect::<Result<_, _>>()?;
+        }
+        heights += ncol - z0;
+        if heights > MAX_HEIGHTS {
+            return Err(err(
+                ln,
+                format!("more than {MAX_HEIGHTS} heights, the limit for line scans"),
+            ));
         }
         for (c, f) in fields.iter().enumerate() {
             let v = sep.number(f).ok_or_else(|| {
@@ -267,55 +304,118 @@ pub fn parse_profile(text: &str, path: &Path, opts: &ProfileOptions) -> Result<P
                 ));
             }
             if c < z0 {
-                x.push((v * x_scale, ln));
+                x.push((v * cols.x_scale, ln));
             } else {
                 scans[c - z0].push(v * z_scales[c - z0]);
             }
         }
     }
+    Ok((x, scans))
+}
+
+/// The sample spacing from the x column: each step must match the median step within 1 %
+/// (room for rounded x values); dx is then the mean step over the whole scan.
+fn spacing_of_x(
+    path: &Path,
+    x: &[(f64, usize)],
+    given: Option<f64>,
+    line: usize,
+) -> Result<f64, Error> {
+    let n = x.len();
+    let mut steps: Vec<f64> = x.windows(2).map(|w| w[1].0 - w[0].0).collect();
+    steps.sort_by(f64::total_cmp);
+    let median = steps[steps.len() / 2];
+    if median.is_nan() || median <= 0.0 {
+        return Err(input_err(
+            path,
+            x[1].1,
+            "x must increase down the file".into(),
+        ));
+    }
+    for w in x.windows(2) {
+        let step = w[1].0 - w[0].0;
+        if (step - median).abs() > 1e-2 * median {
+            return Err(input_err(
+                path,
+                w[1].1,
+                format!(
+                    "x steps by {step:e} m here but by {median:e} m elsewhere; expected \
+                     equally spaced x"
+                ),
+            ));
+        }
+    }
+    let dx = (x[n - 1].0 - x[0].0) / (n - 1) as f64;
+    if let Some(d) = given
+        && (d / dx - 1.0).abs() > 1e-3
+    {
+        return Err(input_err(
+            path,
+            line,
+            format!("dx = {d:e} m was given but the x column has spacing {dx:e} m"),
+        ));
+    }
+    Ok(dx)
+}
+
+/// Parse line-scan text; `path` only names the file in messages.
+pub fn parse_profile(text: &str, path: &Path, opts: &ProfileOptions) -> Result<Profile, Error> {
+    let mut meta = Meta::default();
+    for (ln, l) in textio::lines(text) {
+        if let Some(m) = parse_meta(l, path, ln)? {
+            meta = m;
+            break;
+        }
+    }
+    let mut lines = textio::content_lines(text).peekable();
+    let Some(&(first_line, first)) = lines.peek() else {
+        return Err(input_err(
+            path,
+            1,
+            "no data: expected rows of x and z, or of z".into(),
+        ));
+    };
+    let sep = Sep::detect(first);
+    let header = sep.is_header(first).then(|| {
+        lines.next();
+        Header::parse(sep, first, first_line)
+    });
+    let dx_given = opts.dx.or(meta.dx);
+    let has_x = match &header {
+        Some(h) => {
+            let n = h.names[0].to_lowercase();
+            n.starts_with('x') || n.starts_with("pos") || n.starts_with("dist")
+        }
+        None => dx_given.is_none(),
+    };
+    let mut cols = Columns {
+        sep,
+        header,
+        first_line,
+        has_x,
+        x_scale: 1.0,
+    };
+    if has_x {
+        cols.x_scale = cols.scale(path, &opts.x_unit, None, 0, "x")?;
+    }
+    let (x, scans) = read_scan_rows(path, &cols, lines, opts, &meta)?;
     let n = scans.first().map_or(0, Vec::len);
     if n < 8 {
-        return Err(err(
-            first_line,
+        return Err(input_err(
+            path,
+            cols.first_line,
             format!("found {n} rows of heights; expected at least 8"),
         ));
     }
     let dx = if has_x {
-        // Each step must match the median step within 1 % (room for rounded x values); dx is
-        // then the mean step over the whole scan.
-        let mut steps: Vec<f64> = x.windows(2).map(|w| w[1].0 - w[0].0).collect();
-        steps.sort_by(f64::total_cmp);
-        let median = steps[steps.len() / 2];
-        if median.is_nan() || median <= 0.0 {
-            return Err(err(x[1].1, "x must increase down the file".into()));
-        }
-        for w in x.windows(2) {
-            let step = w[1].0 - w[0].0;
-            if (step - median).abs() > 1e-2 * median {
-                return Err(err(
-                    w[1].1,
-                    format!(
-                        "x steps by {step:e} m here but by {median:e} m elsewhere; expected \
-                         equally spaced x"
-                    ),
-                ));
-            }
-        }
-        let dx = (x[n - 1].0 - x[0].0) / (n - 1) as f64;
-        if let Some(d) = opts.dx
-            && (d / dx - 1.0).abs() > 1e-3
-        {
-            return Err(err(
-                hline.max(first_line),
-                format!("dx = {d:e} m was given but the x column has spacing {dx:e} m"),
-            ));
-        }
-        dx
+        let hline = cols.header.as_ref().map_or(first_line, |h| h.line);
+        spacing_of_x(path, &x, opts.dx, hline)?
     } else {
         match dx_given {
             Some(d) if d.is_finite() && d > 0.0 => d,
             _ => {
-                return Err(err(
+                return Err(input_err(
+                    path,
                     first_line,
                     "heights without an x column need the spacing dx (e.g. --dx 0.5um)".into(),
                 ));
@@ -329,48 +429,98 @@ pub fn parse_profile(text: &str, path: &Path, opts: &ProfileOptions) -> Result<P
     })
 }
 
+/// Heights read from a map file so far.
+struct MapRows {
+    z: Vec<f64>,
+    nx: usize,
+    ny: usize,
+    first_row_line: usize,
+}
+
+impl MapRows {
+    /// Add one line of heights (scaled by `scale`), checking its length against the first
+    /// row's and the metadata's grid.
+    fn push_row(
+        &mut self,
+        path: &Path,
+        sep: Sep,
+        line: &str,
+        ln: usize,
+        scale: f64,
+        meta: &Meta,
+    ) -> Result<(), Error> {
+        let err = |msg: String| input_err(path, ln, msg);
+        if meta.ny.is_some_and(|ny| self.ny == ny) {
+            return Err(err(format!(
+                "more rows than the metadata's ny = {} (line {})",
+                self.ny, meta.line
+            )));
+        }
+        let before = self.z.len();
+        for (c, f) in sep.split(line).iter().enumerate() {
+            let v = sep.number(f).ok_or_else(|| {
+                err(format!(
+                    "expected a height (number) in column {}, found '{f}'",
+                    c + 1
+                ))
+            })?;
+            if !v.is_finite() {
+                return Err(err(format!(
+                    "'{f}' in column {}; expected a finite height (missing points are not interpolated)",
+                    c + 1
+                )));
+            }
+            if self.z.len() == MAX_HEIGHTS {
+                return Err(err(format!(
+                    "more than {MAX_HEIGHTS} heights, the limit for a height map"
+                )));
+            }
+            self.z.push(v * scale);
+        }
+        let count = self.z.len() - before;
+        if self.ny == 0 {
+            self.nx = count;
+            self.first_row_line = ln;
+            if let Some(nx) = meta.nx.filter(|&nx| nx != count) {
+                return Err(err(format!(
+                    "{count} heights in the first row, but the metadata (line {}) says nx = {nx}",
+                    meta.line
+                )));
+            }
+        } else if count != self.nx {
+            return Err(err(format!(
+                "expected {} heights (as on line {}), found {count}",
+                self.nx, self.first_row_line
+            )));
+        }
+        self.ny += 1;
+        Ok(())
+    }
+}
+
 /// Read a height map (see the module docs), line by line.
 pub fn read_height_map(path: &Path, opts: &MapOptions) -> Result<HeightMap, Error> {
-    let f = std::fs::File::open(path).map_err(|e| io_err(path, e))?;
-    let mut r = BufReader::with_capacity(1 << 20, f);
-    let err = |line: usize, msg: String| Error::Input {
-        path: path.to_path_buf(),
-        line,
-        msg,
-    };
+    let mut r = open_lines(path, MAX_MAP_BYTES)?;
     let mut meta = Meta::default();
-    let mut buf = Vec::new();
-    let mut z: Vec<f64> = Vec::new();
-    let mut nx = 0usize;
-    let mut ny = 0usize;
+    let mut rows = MapRows {
+        z: Vec::new(),
+        nx: 0,
+        ny: 0,
+        first_row_line: 0,
+    };
     let mut sep: Option<Sep> = None;
-    let mut first_row_line = 0;
     let mut z_scale: Option<f64> = None;
-    let mut ln = 0usize;
-    loop {
-        buf.clear();
-        if r.read_until(b'\n', &mut buf).map_err(|e| io_err(path, e))? == 0 {
-            break;
-        }
-        ln += 1;
-        let text =
-            std::str::from_utf8(&buf).map_err(|_| err(ln, "the file is not UTF-8 text".into()))?;
-        let text = if ln == 1 {
-            text.trim_start_matches('\u{feff}')
-        } else {
-            text
-        };
-        let line = text.trim_end_matches(['\n', '\r']);
+    while let Some((ln, line)) = r.next_line()? {
         let t = line.trim();
         if t.is_empty() {
             continue;
         }
-        if t.starts_with('#') || t.starts_with('%') || t.starts_with("//") {
+        if textio::is_comment(t) {
             if let Some(m) = parse_meta(t, path, ln)? {
                 meta = m;
                 if let (Some(a), Some(b)) = (meta.nx, meta.ny) {
-                    // Reserve exactly (capped at 2^28 heights): no doubling reallocations.
-                    z.reserve_exact(a.saturating_mul(b).min(1 << 28));
+                    // Reserve exactly (the product is within MAX_HEIGHTS): no doubling.
+                    rows.z.reserve_exact(a * b);
                 }
             }
             continue;
@@ -379,62 +529,60 @@ pub fn read_height_map(path: &Path, opts: &MapOptions) -> Result<HeightMap, Erro
         let scale = match z_scale {
             Some(s) => s,
             None => {
-                let u = opts.z_unit.clone().or(meta.z_unit.clone());
+                let u = opts.z_unit.as_deref().or(meta.z_unit.as_deref());
                 let s = match u {
                     None => 1.0,
-                    Some(u) => unit_scale(&u, Dim::Length(1)).map_err(|e| {
-                        err(
+                    Some(u) => unit_scale(u, Dim::Length(1)).map_err(|e| {
+                        input_err(
+                            path,
                             ln,
                             format!("unit of the heights: {e}; expected a length unit"),
                         )
                     })?,
                 };
-                z_scale = Some(s);
-                s
+                *z_scale.insert(s)
             }
         };
-        let before = z.len();
-        for (c, f) in s.split(line).iter().enumerate() {
-            let v = s.number(f).ok_or_else(|| {
-                err(
-                    ln,
-                    format!(
-                        "expected a height (number) in column {}, found '{f}'",
-                        c + 1
-                    ),
-                )
-            })?;
-            if !v.is_finite() {
-                return Err(err(
-                    ln,
-                    format!(
-                        "'{f}' in column {}; expected a finite height (missing points are not interpolated)",
-                        c + 1
-                    ),
-                ));
-            }
-            z.push(v * scale);
-        }
-        let count = z.len() - before;
-        if ny == 0 {
-            nx = count;
-            first_row_line = ln;
-        } else if count != nx {
-            return Err(err(
-                ln,
-                format!("expected {nx} heights (as on line {first_row_line}), found {count}"),
-            ));
-        }
-        ny += 1;
+        rows.push_row(path, s, line, ln, scale, &meta)?;
+    }
+    finish_map(path, rows, &meta, opts, r.line)
+}
+
+/// Check the grid read against the metadata's and settle the pixel size.
+fn finish_map(
+    path: &Path,
+    rows: MapRows,
+    meta: &Meta,
+    opts: &MapOptions,
+    last_line: usize,
+) -> Result<HeightMap, Error> {
+    let MapRows {
+        mut z,
+        nx,
+        ny,
+        first_row_line,
+    } = rows;
+    if let Some(want) = meta.ny.filter(|&want| want != ny) {
+        return Err(input_err(
+            path,
+            last_line.max(1),
+            format!(
+                "the file ends after {ny} rows of heights, but the metadata (line {}) says \
+                 ny = {want}: the map is incomplete",
+                meta.line
+            ),
+        ));
     }
     if nx < 4 || ny < 4 {
-        return Err(err(
-            ln.max(1),
+        return Err(input_err(
+            path,
+            last_line.max(1),
             format!("a {nx} x {ny} map; expected at least 4 x 4 heights"),
         ));
     }
     let dx = opts.dx.or(meta.dx).ok_or_else(|| {
-        err(
+        input_err(
+            path,
             first_row_line,
             "a height map needs its pixel size (e.g. --pixel-size 1um)".into(),
         )

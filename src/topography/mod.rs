@@ -1,6 +1,6 @@
-//! Surface topography: height data, their power spectra, and synthetic surfaces (issue 4).
+//! Surface topography: height data, their power spectra, and synthetic surfaces.
 //!
-//! Normalisation of the spectra (paper eq. A2 for the 2D PSD; details in [`convert`]):
+//! Normalisation of the spectra (paper eq. A2 for the 2D PSD; details in [`crate::psd::abel`]):
 //! - 2D PSD C(q) in m^4: h_rms² = 2π∫_0^∞ q C(q) dq. From a map of N = nx·ny heights with
 //!   pixel sizes dx, dy and discrete Fourier transform H_k = Σ_n h_n e^{−ik·n}, the periodogram
 //!   is C(q_k) = dx dy |H_k|² / ((2π)² N ⟨w²⟩) (w the window), so that
@@ -12,11 +12,9 @@
 //! - [`Profile`], [`HeightMap`]: the data, SI inside (m);
 //! - [`io`]: readers (line scans, height maps) and the height-map writer;
 //! - [`spectrum`]: detrend → window → FFT → radial average → log binning → cut-off;
-//! - [`convert`]: the exact 1D ↔ 2D PSD relation of an isotropic surface (Abel pair);
 //! - [`synth`]: self-affine random-phase surfaces with a known PSD;
 //! - [`psd_of_file`]: file → PSD in one call (`coatcheck psd`, `coatcheck check --profile`).
 
-pub mod convert;
 pub mod io;
 pub mod spectrum;
 pub mod synth;
@@ -78,6 +76,17 @@ pub struct HeightFileOptions {
     pub periodic: Option<bool>,
 }
 
+/// An error about the data of a whole file (no single line is at fault), naming the file.
+fn in_file(path: &std::path::Path, e: crate::Error) -> crate::Error {
+    match e {
+        crate::Error::Input { .. } | crate::Error::Io { .. } => e,
+        other => crate::Error::Value {
+            origin: path.display().to_string(),
+            msg: other.to_string(),
+        },
+    }
+}
+
 /// Read a height file (line scans or a height map) and compute its PSD: the pipeline behind
 /// `coatcheck psd` and `coatcheck check --profile`. Returns what the file held and the result.
 pub fn psd_of_file(
@@ -114,7 +123,7 @@ pub fn psd_of_file(
                     periodic: file.periodic,
                 },
             )?;
-            spectrum::profile_psd(&p, opts)?
+            spectrum::profile_psd(&p, opts).map_err(|e| in_file(path, e))?
         }
         HeightKind::Map => {
             let m = io::read_height_map(
@@ -126,7 +135,7 @@ pub fn psd_of_file(
                     periodic: file.periodic,
                 },
             )?;
-            spectrum::map_psd(&m, opts)?
+            spectrum::map_psd(&m, opts).map_err(|e| in_file(path, e))?
         }
     };
     Ok((kind, result))

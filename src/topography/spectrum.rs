@@ -21,10 +21,10 @@
 //! The summary's moments (rms slope, curvature) are the discrete sums over the kept modes
 //! (for line scans converted to the isotropic 2D values: ξ² = 2⟨h′²⟩, κ² = (8/3)⟨h″²⟩).
 
-use super::convert::{self, Conversion};
 use super::{HeightMap, Profile};
 use crate::error::Error;
 use crate::psd::Tabulated;
+use crate::psd::abel::{self, Conversion};
 use rayon::prelude::*;
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex64;
@@ -234,6 +234,13 @@ impl Bins {
             .filter(|&b| self.count[b] > 0.0 && self.sum_c[b] > 0.0)
             .map(|b| (self.sum_q[b] / self.count[b], self.sum_c[b] / self.count[b]))
             .unzip();
+        if self.total == 0.0 {
+            return Err(Error::invalid(
+                "heights",
+                "flat after detrending (every Fourier mode is zero)",
+                "a rough surface: heights that vary beyond the removed trend",
+            ));
+        }
         if q.len() < 2 {
             return Err(Error::invalid(
                 what,
@@ -253,8 +260,135 @@ impl Bins {
     }
 }
 
-/// Bins with at most this many modes are "few-mode" bins (noisy by nature).
-pub const FEW_MODES: f64 = 4.0;
+/// A fitted 2D polynomial trend: the terms c·P_i(x)·P_j(y) on the grid's orthogonal
+/// polynomials.
+struct Trend {
+    px: Vec<Vec<f64>>,
+    py: Vec<Vec<f64>>,
+    terms: Vec<(usize, usize, f64)>,
+}
+
+impl Trend {
+    /// The least-squares trend of degree `deg`: coefficients of the products P_i(x) P_j(y),
+    /// i + j ≤ deg.
+    fn fit(map: &HeightMap, deg: usize) -> Self {
+        let px = orthogonal_polys(map.nx, deg);
+        let py = orthogonal_polys(map.ny, deg);
+        let mut terms: Vec<(usize, usize, f64)> = Vec::new();
+        for (i, pxi) in px.iter().enumerate() {
+            for (j, pyj) in py.iter().enumerate() {
+                if i + j > deg {
+                    continue;
+                }
+                // Summed in row order after the parallel map: the same bits whatever the threads.
+                let num: f64 = (0..map.ny)
+                    .into_par_iter()
+                    .map(|iy| pyj[iy] * dot(map.row(iy), pxi))
+                    .collect::<Vec<f64>>()
+                    .iter()
+                    .sum();
+                let c = num / (dot(pxi, pxi) * dot(pyj, pyj));
+                terms.push((i, j, c));
+            }
+        }
+        Self { px, py, terms }
+    }
+
+    fn at(&self, ix: usize, iy: usize) -> f64 {
+        self.terms
+            .iter()
+            .map(|&(i, j, c)| c * self.px[i][ix] * self.py[j][iy])
+            .sum()
+    }
+}
+
+/// The window along one axis and its mean square.
+fn window_of(window: Window, n: usize) -> (Vec<f64>, f64) {
+    match window {
+        Window::Hann => hann(n),
+        Window::None => (vec![1.0; n], 1.0),
+    }
+}
+
+/// Row FFTs of the detrended, windowed map into the half spectrum (kx ≥ 0, `nx/2 + 1` per
+/// row), and the sum of squares of the detrended heights.
+fn row_spectra(map: &HeightMap, trend: &Trend, wx: &[f64], wy: &[f64]) -> (Vec<Complex64>, f64) {
+    let (nx, ny) = (map.nx, map.ny);
+    let half = nx / 2 + 1;
+    let fx = FftPlanner::new().plan_fft_forward(nx);
+    let mut spec = vec![Complex64::new(0.0, 0.0); ny * half];
+    let mut rms_sum = 0.0;
+    spec.par_chunks_mut(half)
+        .enumerate()
+        .map(|(iy, out)| {
+            let row = map.row(iy);
+            let mut buf: Vec<Complex64> = Vec::with_capacity(nx);
+            let mut sq = 0.0;
+            for ix in 0..nx {
+                let v = row[ix] - trend.at(ix, iy);
+                sq += v * v;
+                buf.push(Complex64::new(v * wx[ix] * wy[iy], 0.0));
+            }
+            fx.process(&mut buf);
+            out.copy_from_slice(&buf[..half]);
+            sq
+        })
+        .collect::<Vec<f64>>()
+        .iter()
+        .for_each(|s| rms_sum += s);
+    (spec, rms_sum)
+}
+
+/// Column FFTs of the half spectrum, each mode binned as it comes: `norm` turns |H|² into C,
+/// `empty` is the (empty) binning to fill.
+fn column_bins(map: &HeightMap, spec: &[Complex64], norm: f64, empty: &Bins) -> Bins {
+    let (nx, ny) = (map.nx, map.ny);
+    let half = nx / 2 + 1;
+    let fy = FftPlanner::new().plan_fft_forward(ny);
+    let (dqx, dqy) = (
+        2.0 * PI / (nx as f64 * map.dx),
+        2.0 * PI / (ny as f64 * map.dy),
+    );
+    let cell = dqx * dqy;
+    // Columns in fixed blocks, each binned on its own, merged in block order: the sums do not
+    // depend on the thread count or scheduling.
+    const BLOCK: usize = 16;
+    (0..half)
+        .into_par_iter()
+        .chunks(BLOCK)
+        .map(|block| {
+            let mut bins = empty.clone();
+            let mut col = vec![Complex64::new(0.0, 0.0); ny];
+            for kx in block {
+                for iy in 0..ny {
+                    col[iy] = spec[iy * half + kx];
+                }
+                fy.process(&mut col);
+                let mult = if kx == 0 || (nx.is_multiple_of(2) && kx == nx / 2) {
+                    1.0
+                } else {
+                    2.0
+                };
+                let qx = kx as f64 * dqx;
+                for (ky, v) in col.iter().enumerate() {
+                    let fyk = if ky <= ny / 2 {
+                        ky as f64
+                    } else {
+                        ky as f64 - ny as f64
+                    };
+                    let q = qx.hypot(fyk * dqy);
+                    if q == 0.0 {
+                        continue;
+                    }
+                    bins.add(q, v.norm_sqr() * norm, cell, mult);
+                }
+            }
+            bins
+        })
+        .collect::<Vec<Bins>>()
+        .into_iter()
+        .fold(empty.clone(), Bins::merge)
+}
 
 /// The PSD of a height map.
 pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Error> {
@@ -285,40 +419,13 @@ pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Erro
         Window::Hann
     });
     let mut steps = Vec::new();
-
-    // Detrend: coefficients of the products P_i(x) P_j(y), i + j ≤ degree.
     let deg = detrend.degree();
-    let px = orthogonal_polys(nx, deg);
-    let py = orthogonal_polys(ny, deg);
-    let mut terms: Vec<(usize, usize, f64)> = Vec::new();
-    for (i, pxi) in px.iter().enumerate() {
-        for (j, pyj) in py.iter().enumerate() {
-            if i + j > deg {
-                continue;
-            }
-            // Summed in row order after the parallel map: the same bits whatever the threads.
-            let num: f64 = (0..ny)
-                .into_par_iter()
-                .map(|iy| pyj[iy] * dot(map.row(iy), pxi))
-                .collect::<Vec<f64>>()
-                .iter()
-                .sum();
-            let c = num / (dot(pxi, pxi) * dot(pyj, pyj));
-            terms.push((i, j, c));
-        }
-    }
+    let trend = Trend::fit(map, deg);
     steps.push(
         format!("detrend: {detrend:?} (least-squares polynomial of degree {deg})").to_lowercase(),
     );
-
-    let (wx, msx) = match window {
-        Window::Hann => hann(nx),
-        Window::None => (vec![1.0; nx], 1.0),
-    };
-    let (wy, msy) = match window {
-        Window::Hann => hann(ny),
-        Window::None => (vec![1.0; ny], 1.0),
-    };
+    let (wx, msx) = window_of(window, nx);
+    let (wy, msy) = window_of(window, ny);
     steps.push(match window {
         Window::Hann => format!(
             "window: hann (separable), power loss corrected by 1/<w^2> = {:.4}",
@@ -326,40 +433,10 @@ pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Erro
         ),
         Window::None => "window: none".into(),
     });
-
-    // Row FFTs into the half spectrum.
-    let half = nx / 2 + 1;
-    let mut planner = FftPlanner::new();
-    let fx = planner.plan_fft_forward(nx);
-    let fy = planner.plan_fft_forward(ny);
-    let mut spec = vec![Complex64::new(0.0, 0.0); ny * half];
-    let mut rms_sum = 0.0;
-    spec.par_chunks_mut(half)
-        .enumerate()
-        .map(|(iy, out)| {
-            let row = map.row(iy);
-            let mut buf: Vec<Complex64> = Vec::with_capacity(nx);
-            let mut sq = 0.0;
-            for ix in 0..nx {
-                let trend: f64 = terms
-                    .iter()
-                    .map(|&(i, j, c)| c * px[i][ix] * py[j][iy])
-                    .sum();
-                let v = row[ix] - trend;
-                sq += v * v;
-                buf.push(Complex64::new(v * wx[ix] * wy[iy], 0.0));
-            }
-            fx.process(&mut buf);
-            out.copy_from_slice(&buf[..half]);
-            sq
-        })
-        .collect::<Vec<f64>>()
-        .iter()
-        .for_each(|s| rms_sum += s);
+    let (spec, rms_sum) = row_spectra(map, &trend, &wx, &wy);
     let h_rms = (rms_sum / (nx * ny) as f64).sqrt();
     steps.push(format!("fft: {nx} x {ny} (rustfft, half spectrum kx >= 0)"));
 
-    // Column FFTs, binned on the fly.
     let (lx, ly) = (nx as f64 * map.dx, ny as f64 * map.dy);
     let (dqx, dqy) = (2.0 * PI / lx, 2.0 * PI / ly);
     // A window blurs each mode with its neighbours; the first mode then also leaks into the
@@ -375,46 +452,8 @@ pub fn map_psd(map: &HeightMap, opts: &PsdOptions) -> Result<TopographyPsd, Erro
         ));
     }
     let norm = map.dx * map.dy / ((2.0 * PI).powi(2) * (nx * ny) as f64 * msx * msy);
-    let cell = dqx * dqy;
     let ppd = opts.points_per_decade;
-    // Columns in fixed blocks, each binned on its own, merged in block order: the sums do not
-    // depend on the thread count or scheduling.
-    const BLOCK: usize = 16;
-    let bins = (0..half)
-        .into_par_iter()
-        .chunks(BLOCK)
-        .map(|block| {
-            let mut bins = Bins::new(q_lo, q_hi, ppd);
-            let mut col = vec![Complex64::new(0.0, 0.0); ny];
-            for kx in block {
-                for iy in 0..ny {
-                    col[iy] = spec[iy * half + kx];
-                }
-                fy.process(&mut col);
-                let mult = if kx == 0 || (nx.is_multiple_of(2) && kx == nx / 2) {
-                    1.0
-                } else {
-                    2.0
-                };
-                let qx = kx as f64 * dqx;
-                for (ky, v) in col.iter().enumerate() {
-                    let fyk = if ky <= ny / 2 {
-                        ky as f64
-                    } else {
-                        ky as f64 - ny as f64
-                    };
-                    let q = qx.hypot(fyk * dqy);
-                    if q == 0.0 {
-                        continue;
-                    }
-                    bins.add(q, v.norm_sqr() * norm, cell, mult);
-                }
-            }
-            bins
-        })
-        .collect::<Vec<Bins>>()
-        .into_iter()
-        .fold(Bins::new(q_lo, q_hi, ppd), Bins::merge);
+    let bins = column_bins(map, &spec, norm, &Bins::new(q_lo, q_hi, ppd));
     drop(spec);
     steps.push(format!(
         "radial average: log bins, {ppd} per decade, from q = {q_lo:.4e} 1/m"
@@ -457,8 +496,8 @@ pub struct LinePsd {
     pub c1d: Tabulated,
     pub summary: Summary,
     pub steps: Vec<String>,
-    /// How many of the lowest points come from bins of at most [`FEW_MODES`] modes.
-    pub few_mode_points: usize,
+    /// The number of Fourier modes averaged in each point of `c1d`.
+    pub modes: Vec<f64>,
 }
 
 /// The 1D PSD of line scans (no conversion to 2D).
@@ -562,29 +601,36 @@ pub fn profile_c1d(profile: &Profile, opts: &PsdOptions) -> Result<LinePsd, Erro
         q_max: q_hi,
         outside_fraction: outside(bins.total, bins.kept),
     };
-    let few_mode_points = bins
-        .counts()
-        .iter()
-        .take_while(|&&c| c <= FEW_MODES)
-        .count();
     Ok(LinePsd {
         c1d,
         summary,
         steps,
-        few_mode_points,
+        modes: bins.counts(),
     })
 }
 
 /// The PSD of line scans: the 1D PSD averaged over the scans, and the isotropic 2D PSD from it
-/// by the exact inverse Abel transform (or the option's shortcut).
+/// by the inverse Abel transform of its non-increasing fit (or the option's shortcut; see
+/// [`abel::c2d_from_measured_c1d`]).
 pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd, Error> {
     let LinePsd {
         c1d,
         summary,
         mut steps,
-        few_mode_points: few,
+        modes,
     } = profile_c1d(profile, opts)?;
-    let conv = convert::c2d_from_c1d(c1d.q(), c1d.c_values(), opts.conversion)?;
+    let conv = abel::c2d_from_measured_c1d(c1d.q(), c1d.c_values(), &modes, opts.conversion)?;
+    if let Some(fit) = conv.fit
+        && fit.changed > 0
+    {
+        steps.push(format!(
+            "1D -> 2D: C1D fitted as non-increasing in q (isotonic least squares of ln C1D, \
+             weighted by modes per bin): {} of {} point(s) changed, by at most {:.1} %",
+            fit.changed,
+            modes.len(),
+            100.0 * fit.max_rel_change
+        ));
+    }
     steps.push(match opts.conversion {
         Conversion::InverseAbel => format!(
             "1D -> 2D: exact inverse Abel transform (isotropic surface), C1D continued as q^{:.3} beyond the cut-off",
@@ -592,41 +638,13 @@ pub fn profile_psd(profile: &Profile, opts: &PsdOptions) -> Result<TopographyPsd
         ),
         Conversion::PiQShortcut => "1D -> 2D: shortcut C = C1D/(pi q)".into(),
     });
-    // At the low-q end each bin holds a handful of modes, and the inverse transform (a half
-    // derivative) turns their scatter into C ≤ 0 there. The points up to the last C ≤ 0 among
-    // these few-mode bins are dropped, and said so in the steps; C ≤ 0 anywhere else is an
-    // error.
-    let mut conv = conv;
-    let lead = conv.c[..few]
-        .iter()
-        .rposition(|e| e.value.is_nan() || e.value <= 0.0)
-        .map_or(0, |i| i + 1);
-    if lead > 0 && lead < conv.c.len() {
-        steps.push(format!(
-            "1D -> 2D: the {lead} lowest-q point(s) (q < {:.4e} 1/m, bins of <= {FEW_MODES} modes) \
-             included C <= 0 from the scatter of the few modes there and were dropped from the \
-             2D PSD (more independent scans help)",
-            conv.q[lead]
-        ));
-        conv.q.drain(..lead);
-        conv.c.drain(..lead);
-    }
-    if let Some(i) = conv
-        .c
-        .iter()
-        .position(|e| e.value.is_nan() || e.value <= 0.0)
-    {
-        return Err(Error::invalid(
+    let c2d = conv.into_tabulated().map_err(|e| {
+        Error::invalid(
             "1D -> 2D conversion",
-            format!(
-                "C = {:.3e} m^4 at q = {:.4e} 1/m",
-                conv.c[i].value, conv.q[i]
-            ),
-            "C > 0: the averaged 1D PSD rises too steeply there for an isotropic surface \
-             (more scans, fewer points per decade, or --conversion pi-q-shortcut)",
-        ));
-    }
-    let c2d = conv.into_tabulated()?;
+            e,
+            "a 2D PSD that is finite and > 0 (heights in SI too large or too small?)",
+        )
+    })?;
     Ok(TopographyPsd {
         c2d,
         c1d: Some(c1d),

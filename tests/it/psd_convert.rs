@@ -1,9 +1,9 @@
-//! The exact 1D ↔ 2D PSD relation (`topography::convert`): analytic pairs, the Abel round
+//! The exact 1D ↔ 2D PSD relation (`psd::abel`): analytic pairs, the Abel round
 //! trip, and line scans of a synthetic map against the map's own 2D PSD.
 
 use coatcheck::psd::Spectrum;
+use coatcheck::psd::abel::{Conversion, c1d_at, c1d_of_spectrum, c2d_from_c1d};
 use coatcheck::topography::Profile;
-use coatcheck::topography::convert::{Conversion, c1d_at, c1d_of_spectrum, c2d_from_c1d};
 use coatcheck::topography::spectrum::{PsdOptions, map_psd, profile_psd};
 use coatcheck::topography::synth::{Amplitude, SynthSpec, self_affine_map};
 use std::f64::consts::PI;
@@ -163,4 +163,95 @@ fn line_scans_of_a_map_convert_to_the_maps_2d_psd() {
     eprintln!("line scans → 2D vs map: {vs_map:.4}, vs exact: {vs_exact:.4} ({points} points)");
     assert!(points >= 10, "{points}");
     assert!(vs_map < 0.05 && vs_exact < 0.05, "{vs_map} {vs_exact}");
+}
+
+/// One row of a periodic self-affine map (H, roll-off at 8 q_L, roughness to the corners) as a
+/// single line scan, and the generator's exact 2D PSD.
+fn single_scan(hurst: f64, seed: u64) -> (Profile, SynthSpec) {
+    let (n, dx) = (1024, 1e-6);
+    let ql = 2.0 * PI / (n as f64 * dx);
+    let sp = SynthSpec {
+        n,
+        dx,
+        hurst,
+        q0: 8.0 * ql,
+        q1: 1000.0 * ql,
+        amplitude: Amplitude::RmsSlope(0.3),
+        seed,
+    };
+    let m = self_affine_map(&sp).unwrap();
+    let row = m.row(seed as usize % n).to_vec();
+    let p = Profile {
+        dx,
+        scans: vec![row],
+        periodic: true,
+    };
+    (p, sp)
+}
+
+/// A single line scan (the commonest measurement) gives a positive, finite 2D PSD: the noisy
+/// C1D is fitted as non-increasing before the inverse Abel transform. One row of a 1024²
+/// self-affine map, H = 0.3, 0.5, 0.7, 1, six seeds each, default options (Hann window not
+/// needed: the rows are periodic), compared with the generator's exact C on [2 q_r, q_max/2]:
+/// the mean of ln(C/C_exact) over points and seeds lies within ±0.35 (measured −0.10 to −0.24,
+/// mostly the −E ln of the periodogram's scatter), and the rms slope² over that range within
+/// 35 % in every scan (measured: at most 28 %). A single scan cannot do better: a bin of m
+/// modes scatters by 1/√m.
+#[test]
+fn one_line_scan_converts_to_a_positive_2d_psd_near_the_true_one() {
+    for hurst in [0.3, 0.5, 0.7, 1.0] {
+        let (mut sum_ln, mut points) = (0.0, 0);
+        for seed in 1..=6 {
+            let (p, sp) = single_scan(hurst, seed);
+            let psd = profile_psd(&p, &PsdOptions::default()).unwrap();
+            let (lo, hi) = (2.0 * sp.q0, 0.5 * psd.summary.q_max);
+            for (q, c) in psd.c2d.q().iter().zip(psd.c2d.c_values()) {
+                assert!(
+                    c.is_finite() && *c > 0.0,
+                    "H {hurst} seed {seed}: C({q:e}) = {c:e}"
+                );
+                if *q >= lo && *q <= hi {
+                    sum_ln += (c / sp.c(*q)).ln();
+                    points += 1;
+                }
+            }
+            let kept = Spectrum::Tabulated(psd.c2d.restricted(Some(lo), Some(hi)).unwrap());
+            let (a, b) = kept.support();
+            let exact = Spectrum::self_affine(hurst, a, b, None)
+                .unwrap()
+                .scaled(sp.c(a));
+            let err = kept.slope_sq().value / exact.slope_sq().value - 1.0;
+            assert!(
+                err.abs() < 0.35,
+                "H {hurst} seed {seed}: slope² off by {err:.3}"
+            );
+        }
+        let bias = sum_ln / points as f64;
+        eprintln!("H = {hurst}: mean ln(C/C_exact) = {bias:.3} over {points} points");
+        assert!(
+            points >= 50 && bias.abs() < 0.35,
+            "H {hurst}: {bias} ({points})"
+        );
+    }
+}
+
+/// A real stylus profile (Bruker Dektak, 9600 samples, tilted) as a single scan: a PSD with
+/// positive, finite C from the command line (exit 0), where the exact transform of the binned
+/// C1D gave C < 0.
+#[test]
+fn a_real_single_stylus_profile_gives_a_psd() {
+    let o = crate::common::run(&["psd", "tests/data/dektak-1-profile.csv", "--format", "json"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let j = crate::common::json(&o);
+    let c = j["c"].as_array().expect("C values");
+    assert!(c.len() >= 20, "{}", c.len());
+    for v in c {
+        let v = v.as_f64().expect("a number");
+        assert!(v.is_finite() && v > 0.0, "{v}");
+    }
 }

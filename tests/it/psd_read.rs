@@ -1,8 +1,8 @@
 //! The spectrum reader (`psd::read`): layouts users have, and bad input named by file and line.
 
 use coatcheck::Error;
+use coatcheck::psd::abel::Conversion;
 use coatcheck::psd::read::{Column, PsdKind, ReadOptions, parse_spectrum, read_spectrum};
-use coatcheck::topography::convert::Conversion;
 use std::path::{Path, PathBuf};
 
 fn write(name: &str, bytes: &[u8]) -> PathBuf {

@@ -30,6 +30,23 @@
 //! faster than 1/q (s < −1, a finite h_rms²). C near the last octave depends on that
 //! assumption; the reader says so in a warning.
 //!
+//! A measured C1D (a periodogram binned in q, [`c2d_from_measured_c1d`]) scatters by 1/√m in a
+//! bin of m modes, and the transform, a half derivative, turns a local rise of that scatter
+//! into C < 0 (a single stylus profile nearly always has one). For an isotropic surface whose
+//! C(k) does not increase with k (self-affine, with or without roll-off: the surfaces this tool
+//! models) C1D(q) = 2∫C(√(q² + k_y²)) dk_y does not increase either, so the measured ln C1D is
+//! replaced by its least-squares non-increasing fit weighted by m (isotonic regression) and
+//! interpolated by a monotone cubic (Fritsch–Carlson slopes). Then C1D′ ≤ 0 everywhere and
+//! every quadrature term of C is ≥ 0, with the tail's strictly > 0: C is positive and finite
+//! by construction. Points that already fall are kept as they are. Accuracy on one row of
+//! synthetic self-affine maps (H = 0.3 … 1): rms slope² within 35 % and C within the
+//! single-scan scatter, mean ln(C/C_exact) within ±0.35 (test
+//! `one_line_scan_converts_to_a_positive_2d_psd_near_the_true_one`); with many scans the
+//! data are already non-increasing and only the end slopes can change. A ring spectrum (C
+//! peaked away from q = 0) has a rising C1D that this fit flattens: read such data as a 2D map.
+//! Tabulated C1D that never rises ([`c2d_from_c1d`], e.g. a 1D PSD file) is interpolated by
+//! the same monotone cubic; C1D that rises somewhere by the plain one.
+//!
 //! The shortcut C(q) ≈ C1D(q)/(πq) ([`Conversion::PiQShortcut`]) is exact only for a pure
 //! power law with H = 1; in general C1D/(πq C) = 2Γ(H + ½)/(√π Γ(H + 1)), which is 4/π
 //! (27 % too high a C) for H = 0.5. It is offered only as a named option.
@@ -46,7 +63,7 @@ const PANEL: f64 = 0.25;
 
 /// acosh(e^t) for t ≥ 0 without forming e^t: t + ln(1 + √(1 − e^{−2t})). e^t overflows above
 /// t ≈ 709 (points more than 308 decades apart, which the reader accepts), and acosh(∞) = ∞
-/// made a panel count of usize::MAX: the conversion never ended.
+/// would be an endless panel count.
 fn acosh_exp(t: f64) -> f64 {
     t + (-(-2.0 * t).exp_m1()).sqrt().ln_1p()
 }
@@ -141,6 +158,8 @@ pub struct Converted {
     pub method: Conversion,
     /// The power-law exponent s of the tail C1D ∝ q^s assumed beyond the data (inverse Abel).
     pub tail_exponent: Option<f64>,
+    /// What the non-increasing fit of a measured C1D changed ([`c2d_from_measured_c1d`]).
+    pub fit: Option<MonotoneFit>,
 }
 
 impl Converted {
@@ -180,10 +199,96 @@ pub fn tail_exponent(q: &[f64], c1d: &[f64]) -> f64 {
 }
 
 /// Convert a tabulated one-sided 1D PSD (q in 1/m, C1D in m^3; validated like
-/// [`Tabulated::new`]) to the isotropic 2D PSD at the same q.
+/// [`Tabulated::new`]) to the isotropic 2D PSD at the same q, interpolating the points: by a
+/// monotone cubic when they never rise (then every C is positive), else by the plain cubic.
 pub fn c2d_from_c1d(q: &[f64], c1d: &[f64], method: Conversion) -> Result<Converted, Error> {
     let t = Tabulated::new(q.to_vec(), c1d.to_vec())?;
-    let (q, f) = (t.q(), t.c_values());
+    let monotone = t.c_values().windows(2).all(|w| w[1] <= w[0]);
+    convert(t.q(), t.c_values(), method, monotone)
+}
+
+/// Convert a measured 1D PSD, binned from `modes[i]` Fourier modes per point, to the
+/// isotropic 2D PSD (inverse Abel; the shortcut takes the points as they are). ln C1D is first
+/// replaced by its non-increasing least-squares fit weighted by the mode counts
+/// ([`non_increasing_fit`]) and then interpolated by a monotone cubic, so C1D′ ≤ 0 everywhere
+/// and every C is positive (see the module docs).
+pub fn c2d_from_measured_c1d(
+    q: &[f64],
+    c1d: &[f64],
+    modes: &[f64],
+    method: Conversion,
+) -> Result<Converted, Error> {
+    let t = Tabulated::new(q.to_vec(), c1d.to_vec())?;
+    if modes.len() != q.len() || modes.iter().any(|&m| !(m.is_finite() && m > 0.0)) {
+        return Err(Error::invalid(
+            "mode counts",
+            format!("{} counts for {} points", modes.len(), q.len()),
+            "one finite count > 0 per point",
+        ));
+    }
+    if method == Conversion::PiQShortcut {
+        return c2d_from_c1d(q, c1d, method);
+    }
+    let ln_c: Vec<f64> = t.c_values().iter().map(|c| c.ln()).collect();
+    let ln_fit = non_increasing_fit(&ln_c, modes);
+    let fitted: Vec<f64> = (t.c_values().iter().zip(&ln_c).zip(&ln_fit))
+        .map(|((&c, a), &b)| if *a == b { c } else { b.exp() })
+        .collect();
+    let mut conv = c2d_from_c1d(q, &fitted, method)?;
+    let changes = ln_c.iter().zip(&ln_fit).filter(|(a, b)| a != b);
+    conv.fit = Some(MonotoneFit {
+        changed: changes.clone().count(),
+        max_rel_change: changes
+            .map(|(a, b)| (b - a).exp_m1().abs())
+            .fold(0.0, f64::max),
+    });
+    Ok(conv)
+}
+
+/// The weighted least-squares fit of `y` by a non-increasing sequence (isotonic regression,
+/// pool-adjacent-violators): min Σ w_i (f_i − y_i)² subject to f_0 ≥ f_1 ≥ … . Points
+/// already non-increasing are returned unchanged; a run that rises is replaced by its weighted
+/// mean. With y = ln C1D of a bin and w its mode count (var ln C1D ≈ 1/w for a mean of w
+/// exponentially distributed periodogram values), this is the maximum-likelihood
+/// non-increasing ln C1D to leading order.
+pub fn non_increasing_fit(y: &[f64], w: &[f64]) -> Vec<f64> {
+    // Blocks of pooled points: (weighted sum, weight, count).
+    let mut blocks: Vec<(f64, f64, usize)> = Vec::with_capacity(y.len());
+    for (&yi, &wi) in y.iter().zip(w) {
+        blocks.push((wi * yi, wi, 1));
+        while let [.., a, b] = blocks[..] {
+            if a.0 / a.1 >= b.0 / b.1 {
+                break;
+            }
+            blocks.pop();
+            *blocks.last_mut().unwrap() = (a.0 + b.0, a.1 + b.1, a.2 + b.2);
+        }
+    }
+    let mut out = Vec::with_capacity(y.len());
+    let mut start = 0;
+    for (sum, weight, count) in blocks {
+        if count == 1 {
+            out.push(y[start]);
+        } else {
+            out.extend(std::iter::repeat_n(sum / weight, count));
+        }
+        start += count;
+    }
+    out
+}
+
+/// What [`c2d_from_measured_c1d`]'s non-increasing fit changed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MonotoneFit {
+    /// Points whose C1D the fit changed.
+    pub changed: usize,
+    /// The largest relative change of C1D at a point.
+    pub max_rel_change: f64,
+}
+
+/// The conversion of validated points; `monotone`: C1D is non-increasing and is interpolated
+/// by a monotone cubic.
+fn convert(q: &[f64], f: &[f64], method: Conversion, monotone: bool) -> Result<Converted, Error> {
     match method {
         Conversion::PiQShortcut => Ok(Converted {
             q: q.to_vec(),
@@ -193,6 +298,7 @@ pub fn c2d_from_c1d(q: &[f64], c1d: &[f64], method: Conversion) -> Result<Conver
                 .collect(),
             method,
             tail_exponent: None,
+            fit: None,
         }),
         Conversion::InverseAbel => {
             let n = q.len();
@@ -209,7 +315,10 @@ pub fn c2d_from_c1d(q: &[f64], c1d: &[f64], method: Conversion) -> Result<Conver
             }
             let x: Vec<f64> = q.iter().map(|v| v.ln()).collect();
             let y: Vec<f64> = f.iter().map(|v| v.ln()).collect();
-            let m = hermite_slopes(&x, &y);
+            let mut m = hermite_slopes(&x, &y);
+            if monotone {
+                limit_to_monotone(&x, &y, &mut m);
+            }
             let far = far_segments(&x, &y, &m);
             // O(n²) work in all (each point integrates over all points above it): in parallel.
             let c = (0..n)
@@ -221,7 +330,36 @@ pub fn c2d_from_c1d(q: &[f64], c1d: &[f64], method: Conversion) -> Result<Conver
                 c,
                 method,
                 tail_exponent: Some(s_tail),
+                fit: None,
             })
+        }
+    }
+}
+
+/// Fritsch–Carlson limiting of the knot slopes of non-increasing data (x, y): a slope of the
+/// wrong sign, or at a knot next to a flat segment, becomes 0, and on every segment the slopes
+/// relative to the secant d, α = m_i/d and β = m_{i+1}/d, are scaled into α² + β² ≤ 9, a
+/// sufficient condition for the cubic to be monotone on the segment (Fritsch & Carlson 1980).
+/// Scaling only shrinks slopes, so segments already in the region stay there.
+fn limit_to_monotone(x: &[f64], y: &[f64], m: &mut [f64]) {
+    let n = x.len();
+    for i in 0..n - 1 {
+        let d = (y[i + 1] - y[i]) / (x[i + 1] - x[i]);
+        if d == 0.0 {
+            m[i] = 0.0;
+            m[i + 1] = 0.0;
+            continue;
+        }
+        for k in [i, i + 1] {
+            if m[k] * d < 0.0 {
+                m[k] = 0.0;
+            }
+        }
+        let (a, b) = (m[i] / d, m[i + 1] / d);
+        let r = a.hypot(b);
+        if r > 3.0 {
+            m[i] *= 3.0 / r;
+            m[i + 1] *= 3.0 / r;
         }
     }
 }
@@ -380,6 +518,47 @@ mod tests {
     /// acosh(e^t) and ln cosh u agree with the direct forms where those do not overflow (the
     /// stable forms are the more accurate near 0, where acosh(1 + t) cancels), and stay finite
     /// and linear beyond: acosh(e^t) → t + ln 2, ln cosh u → u − ln 2.
+    /// The non-increasing fit against its definition: the result never rises, points that
+    /// already fall are kept, a rising run becomes its weighted mean, and no other
+    /// non-increasing sequence has a smaller weighted squared error (checked against small
+    /// perturbations that stay non-increasing).
+    #[test]
+    fn non_increasing_fit_is_the_weighted_least_squares_one() {
+        assert_eq!(
+            non_increasing_fit(&[3.0, 2.0, 1.0], &[1.0; 3]),
+            [3.0, 2.0, 1.0]
+        );
+        assert_eq!(
+            non_increasing_fit(&[3.0, 1.0, 2.0, 0.0], &[1.0; 4]),
+            [3.0, 1.5, 1.5, 0.0]
+        );
+        // Weights 1 and 3: (1·1 + 3·2)/4 = 1.75; then 1.75 < 4 pools all three: (7 + 4)/5.
+        assert_eq!(
+            non_increasing_fit(&[1.0, 2.0, 4.0], &[1.0, 3.0, 1.0]),
+            [2.2, 2.2, 2.2]
+        );
+        let y = [0.3, -0.2, 0.5, 0.1, 0.4, -1.0, -0.9, -2.0];
+        let w = [1.0, 2.0, 1.0, 4.0, 1.0, 3.0, 1.0, 2.0];
+        let f = non_increasing_fit(&y, &w);
+        assert!(f.windows(2).all(|p| p[1] <= p[0]), "{f:?}");
+        let cost = |g: &[f64]| -> f64 {
+            g.iter()
+                .zip(&y)
+                .zip(&w)
+                .map(|((a, b), c)| c * (a - b).powi(2))
+                .sum()
+        };
+        for i in 0..y.len() {
+            for eps in [-1e-3, 1e-3] {
+                let mut g = f.clone();
+                g[i] += eps;
+                if g.windows(2).all(|p| p[1] <= p[0]) {
+                    assert!(cost(&g) > cost(&f), "{i} {eps}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn substitution_without_overflow() {
         for i in 1..=700 {
