@@ -156,7 +156,10 @@ struct Knots {
 }
 
 impl Knots {
-    fn new(spectrum: &Spectrum, h_max: f64) -> Knots {
+    /// Fails when the spectrum's knots collapse to one point (a support narrower than 1e-12
+    /// relative: no panel) or W = q⁴C is not finite and positive at one of them (no power law
+    /// through it).
+    fn new(spectrum: &Spectrum, h_max: f64) -> Result<Knots, Error> {
         // Knots within rounding of their successor (e.g. a Gaussian band's last stepped knot
         // landing 1 ulp below the support's end) would make a panel of width ~1e-16 whose error
         // estimate is 0·∞ = NaN; keep the later one.
@@ -166,7 +169,25 @@ impl Knots {
             .filter(|w| w[1] > w[0] * (1.0 + 1e-12))
             .map(|w| w[0])
             .collect();
-        knots.push(*all.last().expect("a spectrum has knots"));
+        let (&lo, &hi) = all.first().zip(all.last()).ok_or(Error::Numerical {
+            what: "contact quadrature",
+            detail: "the spectrum has no knots".into(),
+        })?;
+        knots.push(hi);
+        if knots.len() < 2 {
+            return Err(Error::invalid(
+                "spectrum's wavenumber range for the contact integrals",
+                format!("{lo:e}..{hi:e} 1/m"),
+                "q_max/q_min − 1 > 1e-12",
+            ));
+        }
+        let w = |k: f64| k.powi(4) * spectrum.c(k);
+        if let Some(&k) = knots.iter().find(|&&k| !(w(k).is_finite() && w(k) > 0.0)) {
+            return Err(Error::Numerical {
+                what: "contact quadrature",
+                detail: format!("q⁴C(q) = {:e} at the spectrum's knot q = {k:e} 1/m", w(k)),
+            });
+        }
         let q_l = knots[0];
         let mut q_oct = 2.0 * q_l;
         // A spectrum knot within rounding of 2 q_L (e.g. a Gaussian band whose knot grid starts
@@ -188,11 +209,11 @@ impl Knots {
             .windows(2)
             .map(|w| ((w[1].ln() - w[0].ln()) / h_max).ceil().max(1.0) as u32)
             .collect();
-        Knots {
+        Ok(Knots {
             q: knots,
             q_oct,
             splits,
-        }
+        })
     }
 }
 
@@ -395,7 +416,15 @@ impl Grid {
         // panel (2p − 2 > n − 5) apart, the windows of panels 1.. are d4[0], d4[2], ….
         let inner = ((n - 3) / 2 + 1).min(panels).max(1);
         let err = |e: f64, d: f64| ERR_SAFETY * e * (24.0 * d).abs();
-        out[0] = err(self.err4[0], d4[0]);
+        // Panel 0's window lies two nodes right of where it would be centred, the last panels'
+        // up to one node left: where the fourth difference grows towards that edge by a ratio r
+        // per node, ψ⁗ on the panel is about r^shift times the window's (`edge_growth`).
+        let (first, last) = if n >= 6 {
+            (edge_growth(d4[0], d4[1]), edge_growth(d4[n - 5], d4[n - 6]))
+        } else {
+            (1.0, 1.0)
+        };
+        out[0] = err(self.err4[0], d4[0]) * edge_factor(first, 2);
         for ((o, &e), &d) in out[1..inner]
             .iter_mut()
             .zip(&self.err4[1..inner])
@@ -403,8 +432,8 @@ impl Grid {
         {
             *o = err(e, d);
         }
-        for (o, &e) in out[inner..].iter_mut().zip(&self.err4[inner..]) {
-            *o = err(e, d4[n - 5]);
+        for (p, (o, &e)) in out.iter_mut().zip(&self.err4).enumerate().skip(inner) {
+            *o = err(e, d4[n - 5]) * edge_factor(last, (2 * p + 3).saturating_sub(n) as i32);
         }
     }
 
@@ -476,6 +505,23 @@ impl Grid {
         }
         (v, gauss + dp)
     }
+}
+
+/// |a/b|, the growth per node of the fourth difference towards an edge of the grid (from the
+/// window `b` next to the edge's `a`); 1 where it does not grow or either is 0.
+fn edge_growth(a: f64, b: f64) -> f64 {
+    let r = (a / b).abs();
+    if r.is_finite() && r > 1.0 { r } else { 1.0 }
+}
+
+/// How much an edge panel's estimate grows for a window `shift` nodes off its centre, given the
+/// growth `r` per node towards the edge: r^shift, beyond what [`ERR_SAFETY`] covers already. 1
+/// while r^shift ≤ ERR_SAFETY: the divided difference is then a local derivative within that
+/// factor. Beyond it (a kernel changing by more than a factor ERR_SAFETY over a node spacing,
+/// as S⁻² near q_L at q·d ≈ 10 on wide panels) it is the function's value at the window's edge
+/// over the node spacings, not ψ⁗ on the panel.
+fn edge_factor(r: f64, shift: i32) -> f64 {
+    (r.powi(shift) / ERR_SAFETY).max(1.0)
 }
 
 /// Σ_{j < n} term(j) in four running sums (term j into sum j mod 4), added pairwise at the end:
@@ -1140,12 +1186,15 @@ impl Engine {
         self.settings
     }
 
-    fn grid(&self, level: usize) -> &Grid {
-        self.grids[level].get_or_init(|| {
-            let knots = Knots::new(
-                &self.spectrum,
-                panel_width(self.settings.rtol) / (1 << level) as f64,
-            );
+    fn grid(&self, level: usize) -> Result<&Grid, Error> {
+        if let Some(g) = self.grids[level].get() {
+            return Ok(g);
+        }
+        let knots = Knots::new(
+            &self.spectrum,
+            panel_width(self.settings.rtol) / (1 << level) as f64,
+        )?;
+        Ok(self.grids[level].get_or_init(|| {
             let mut grids = self.shared.grids.lock().unwrap_or_else(|e| e.into_inner());
             if let Some((_, g)) = grids.iter().find(|(s, _)| *s == knots.splits) {
                 return Arc::clone(g);
@@ -1153,19 +1202,20 @@ impl Engine {
             let g = Arc::new(Grid::new(&self.spectrum, &knots));
             grids.push((knots.splits, Arc::clone(&g)));
             g
-        })
+        }))
     }
 
-    fn graded(&self, level: usize) -> &Graded {
-        self.graded[level].get_or_init(|| {
+    fn graded(&self, level: usize) -> Result<&Graded, Error> {
+        let grid = self.grid(level)?;
+        Ok(self.graded[level].get_or_init(|| {
             Graded::new(
                 &self.spectrum,
-                self.grid(level),
+                grid,
                 panel_width(self.settings.rtol) / (1 << level) as f64,
                 // Each level halves the base panels: their error falls 16-fold.
                 self.settings.rtol / 16f64.powi(level as i32),
             )
-        })
+        }))
     }
 
     /// Evaluate at one stack (thickness) and nominal pressure p0 (Pa).
@@ -1193,8 +1243,11 @@ impl Engine {
         let mut interface = 0;
         let mut last = None;
         for level in 0..=MAX_REFINE {
-            let grid = self.grid(level);
-            let graded = request.interface().then(|| self.graded(level));
+            let grid = self.grid(level)?;
+            let graded = match request.interface() {
+                true => Some(self.graded(level)?),
+                false => None,
+            };
             evaluations += grid.q.len();
             let mut c = SCRATCH.with_borrow_mut(|s| {
                 evaluate_on(
@@ -1917,7 +1970,7 @@ mod tests {
             .map(|(i, &q)| q.powf(-3.6) * (1.0 + 0.5 * (i as f64).sin()))
             .collect();
         let spectrum = Spectrum::Tabulated(Tabulated::new(q.clone(), c).unwrap());
-        let grid = Grid::new(&spectrum, &Knots::new(&spectrum, 0.1));
+        let grid = Grid::new(&spectrum, &Knots::new(&spectrum, 0.1).unwrap());
         let (u0, u1) = (q[0].ln(), q[39].ln());
         for i in 0..=1000 {
             let u = u0 + (u1 - u0) * i as f64 / 1000.0;
@@ -1985,7 +2038,7 @@ mod tests {
         let q: Vec<f64> = (0..300).map(|i| 1e4 * 1.05f64.powi(i)).collect();
         let c: Vec<f64> = q.iter().map(|&q| q.powf(-3.6)).collect();
         let spectrum = Spectrum::Tabulated(Tabulated::new(q, c).unwrap());
-        let grid = Grid::new(&spectrum, &Knots::new(&spectrum, 0.02));
+        let grid = Grid::new(&spectrum, &Knots::new(&spectrum, 0.02).unwrap());
         let n = grid.q.len();
         let f: Vec<f64> = grid.u.iter().map(|u| (3.0 * u).sin() * u.exp()).collect();
         for (lo, hi) in [(0, n), (17, n - 3)] {
@@ -2011,7 +2064,7 @@ mod tests {
             let q: Vec<f64> = (0..knots).map(|i| 1e4 * 1.3f64.powi(i)).collect();
             let c: Vec<f64> = q.iter().map(|&q| q.powf(-3.2)).collect();
             let spectrum = Spectrum::Tabulated(Tabulated::new(q, c).unwrap());
-            let grid = Grid::new(&spectrum, &Knots::new(&spectrum, 0.1));
+            let grid = Grid::new(&spectrum, &Knots::new(&spectrum, 0.1).unwrap());
             let n = grid.q.len();
             let d4: Vec<f64> = (0..n)
                 .map(|j| (j as f64 + 1.0) * if j % 3 == 0 { -1.0 } else { 1.0 })
