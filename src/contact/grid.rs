@@ -67,8 +67,7 @@ pub(super) struct Knots {
 
 impl Knots {
     /// Fails when the spectrum's knots collapse to one point (a support narrower than 1e-12
-    /// relative: no panel) or W = q⁴C is not finite and positive at one of them (no power law
-    /// through it).
+    /// relative: no panel).
     pub(super) fn new(spectrum: &Spectrum, h_max: f64) -> Result<Knots, Error> {
         // Knots within rounding of their successor (e.g. a Gaussian band's last stepped knot
         // landing 1 ulp below the support's end) would make a panel of width ~1e-16 whose error
@@ -90,13 +89,6 @@ impl Knots {
                 format!("{lo:e}..{hi:e} 1/m"),
                 "q_max/q_min − 1 > 1e-12",
             ));
-        }
-        let w = |k: f64| k.powi(4) * spectrum.c(k);
-        if let Some(&k) = knots.iter().find(|&&k| !(w(k).is_finite() && w(k) > 0.0)) {
-            return Err(Error::Numerical {
-                what: "contact quadrature",
-                detail: format!("q⁴C(q) = {:e} at the spectrum's knot q = {k:e} 1/m", w(k)),
-            });
         }
         let q_l = knots[0];
         let mut q_oct = 2.0 * q_l;

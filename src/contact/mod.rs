@@ -10,13 +10,13 @@
 //!   σ_top² = 2[G1 erf(u) + (p0²/(2√π))(e^{−u²}/u − √π erfc u)], u = p0/(2√G1).
 //! - E_eff*² = E0*² ∫q³C S⁻² dq / ∫q³C dq; reported as E_eff*/E0* ("E_eff/E_film").
 //!
-//! The modules: [`grid`] (the d-independent two-node quadrature in ln q and its error model),
-//! [`graded`] (the interface integrals' graded panels near q_L), [`kernels`] (S⁻², f², g² at the
-//! nodes), [`engine`] (the [`Engine`] and what it caches per spectrum), [`evaluate`] (one
-//! evaluation on one grid, in phases), [`probability`] (P, its slope and derivatives) and
-//! [`distributions`] (Appendix B's stress distributions and peak values).
+//! The modules: `grid` (the d-independent two-node quadrature in ln q and its error model),
+//! `graded` (the interface integrals' graded panels near q_L), `kernels` (S⁻², f², g² at the
+//! nodes), `engine` (the [`Engine`] and what it caches per spectrum), `evaluate` (one
+//! evaluation on one grid, in phases), `probability` (P, its slope and derivatives) and
+//! `distributions` (Appendix B's stress distributions and peak values).
 //!
-//! Every result is an [`Estimate`](crate::prec::Estimate): if the estimate misses rtol, the
+//! Every result is an [`Estimate`]: if the estimate misses rtol, the
 //! evaluation is repeated on grids with panels halved, up to [`MAX_REFINE`] times, and reports
 //! `ToleranceNotReached` if it still misses.
 
