@@ -427,3 +427,95 @@ fn sibling_engine_equals_a_new_one() {
         }
     }
 }
+
+/// A spectrum whose wavenumbers span less than the grid can resolve (1e-12 relative, down to a
+/// single repeated point after rounding) is an error value from `evaluate`, never a panic;
+/// spans just above it evaluate to finite values. Tabulated and self-affine spectra, every
+/// request.
+#[test]
+fn degenerate_spectrum_is_an_error() {
+    use coatcheck::psd::Tabulated;
+    let st = rubber_on_steel(10e-6);
+    for rel_span in [0.0, 1e-16, 1e-13, 1e-12, 1e-11, 1e-9, 1e-6] {
+        let q1 = 1e5 * (1.0 + rel_span);
+        let spectra = [
+            Tabulated::new(vec![1e5, q1], vec![1e-20, 1e-20]).map(Spectrum::Tabulated),
+            Spectrum::self_affine(0.8, 1e5, q1, None),
+        ];
+        for spectrum in spectra.into_iter().filter_map(Result::ok) {
+            for request in [Request::default(), Request::all()] {
+                let got = Engine::new(&spectrum, Settings::default()).evaluate(&st, 1e5, request);
+                match got {
+                    Ok(c) => {
+                        assert!(rel_span > 1e-12, "span {rel_span:e} evaluated");
+                        assert!(c.area_fraction.value.is_finite() && c.g1.err.is_finite());
+                    }
+                    Err(e) => {
+                        assert!(rel_span <= 1e-12, "span {rel_span:e}: {e}");
+                        assert!(e.to_string().contains("wavenumber range"), "{e}");
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The error estimates bound the true errors where the film's kernel S⁻² still differs from 1
+/// by a steep e^{−2qd} at q0 while the panels are wide (q0·d 8 to 12.6, rtol 1e-3 and 1e-4 on
+/// the paper's spectrum), and at every rtol from 1e-3 to 1e-10: against the engine at rtol
+/// 1e-12. A/A0 at q0·d = 10 and rtol 1e-3 is also checked against a 40-digit reference.
+#[test]
+fn error_estimates_bound_true_errors_for_every_rtol() {
+    let spectrum = paper_spectrum();
+    let reference = Engine::new(&spectrum, Settings { rtol: 1e-12 });
+    let engines: Vec<(f64, Engine)> = (3..=10)
+        .map(|k| {
+            let rtol = 10f64.powi(-k);
+            (rtol, Engine::new(&spectrum, Settings { rtol }))
+        })
+        .collect();
+    for i in 0..=23 {
+        let q0d = 8.0 + 0.2 * f64::from(i);
+        let st = rubber_on_steel(q0d / 1e5);
+        let t = reference.evaluate(&st, 1e5, Request::all()).unwrap();
+        for (rtol, engine) in &engines {
+            let c = engine.evaluate(&st, 1e5, Request::all()).unwrap();
+            let pairs = [
+                ("G1", c.g1, t.g1),
+                ("A/A0", c.area_fraction, t.area_fraction),
+                ("σ_top", c.sigma_rms_top.unwrap(), t.sigma_rms_top.unwrap()),
+                (
+                    "σ_int",
+                    c.sigma_rms_interface.unwrap(),
+                    t.sigma_rms_interface.unwrap(),
+                ),
+                (
+                    "τ_int",
+                    c.tau_rms_interface.unwrap(),
+                    t.tau_rms_interface.unwrap(),
+                ),
+                (
+                    "E_eff",
+                    c.e_eff_over_e_film.unwrap(),
+                    t.e_eff_over_e_film.unwrap(),
+                ),
+            ];
+            for (name, got, want) in pairs {
+                let true_err = (got.value - want.value).abs();
+                assert!(
+                    true_err <= got.err + want.err,
+                    "q0·d = {q0d}, rtol {rtol:e}: {name} true err {true_err:e} > {:e} + {:e}",
+                    got.err,
+                    want.err
+                );
+            }
+        }
+    }
+    // A/A0 at d = 100 µm from a 40-digit mpmath evaluation of eq. (B12) with the exact S.
+    let c = engines[0]
+        .1
+        .evaluate(&rubber_on_steel(100e-6), 1e5, Request::default())
+        .unwrap();
+    let exact = 0.119_235_383_924_961_43;
+    assert!((c.area_fraction.value - exact).abs() <= c.area_fraction.err);
+}

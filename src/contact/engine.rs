@@ -1,0 +1,258 @@
+//! The [`Engine`]: the d-independent part of the contact integrals for one spectrum (grids and
+//! graded regions per refinement level, shared with its siblings), the kernel table of the
+//! material pair, and the refinement loop around one evaluation ([`super::evaluate`]).
+
+use super::evaluate::{Point, Scratch, evaluate_on};
+use super::graded::Graded;
+use super::grid::{Grid, Knots};
+use super::kernels::Kernels;
+use super::{Contact, MAX_REFINE, Request};
+use crate::error::Error;
+use crate::layer::{Bilayer, KernelTable, Stack};
+use crate::prec::{EPS, Estimate, KERNEL_RTOL, Settings, Termination};
+use crate::psd::Spectrum;
+use std::cell::RefCell;
+use std::sync::{Arc, Mutex, OnceLock};
+
+thread_local! {
+    /// The evaluation's buffers, one set per thread, lent to one evaluation at a time.
+    static SCRATCH: RefCell<Scratch> = RefCell::default();
+}
+
+/// The d-independent part of the contact integrals for one spectrum; serves every thickness.
+pub struct Engine {
+    spectrum: Spectrum,
+    settings: Settings,
+    grids: [OnceLock<Arc<Grid>>; MAX_REFINE + 1],
+    graded: [OnceLock<Graded>; MAX_REFINE + 1],
+    shared: Arc<Shared>,
+}
+
+/// What engines of one spectrum share ([`Engine::sibling`]).
+#[derive(Default)]
+struct Shared {
+    /// Grids built so far, by their knot splits.
+    grids: Mutex<Vec<(Vec<u32>, Arc<Grid>)>>,
+    /// The kernel table of the last material pair evaluated (d-independent; rebuilt, wider, when
+    /// a thickness needs q·d outside it).
+    table: Mutex<Option<Arc<KernelTable>>>,
+}
+
+/// How far (in ln(qd)) a rebuilt kernel table reaches beyond the range asked for, so that a
+/// thickness scan does not rebuild it at every step.
+const TABLE_MARGIN: f64 = 2.0;
+
+/// Panel width (in ln q) for a relative tolerance: the two-node rule's relative error per panel
+/// is about h⁴ ψ⁗/(4320 ψ), with |ψ⁗/ψ| up to ~6⁴ where S⁻² ∝ (qd)⁻⁶.
+pub fn panel_width(rtol: f64) -> f64 {
+    (1.25 * rtol.max(1e-14).powf(0.25)).min(0.5)
+}
+
+impl Engine {
+    pub fn new(spectrum: &Spectrum, settings: Settings) -> Self {
+        Self {
+            spectrum: spectrum.clone(),
+            settings,
+            grids: Default::default(),
+            graded: Default::default(),
+            shared: Arc::default(),
+        }
+    }
+
+    /// An engine for the same spectrum with other settings, sharing this one's grids (where its
+    /// panel width splits the knot intervals alike, as on a spectrum with dense points) and
+    /// kernel tables: a check's search engine at a looser rtol costs no second set-up.
+    pub fn sibling(&self, settings: Settings) -> Self {
+        Self {
+            spectrum: self.spectrum.clone(),
+            settings,
+            grids: Default::default(),
+            graded: Default::default(),
+            shared: Arc::clone(&self.shared),
+        }
+    }
+
+    /// Builds the kernel table for `layers` at every thickness in [d_min, d_max] now, so that
+    /// evaluations there (in parallel, in any order) all use the same one: a table rebuilt
+    /// wider has other panels, and kernel values that differ within its 2e-14 tolerance.
+    pub fn prepare(&self, layers: &Bilayer, d_min: f64, d_max: f64) {
+        if d_min > 0.0 && d_max.is_finite() {
+            self.table_covering(layers, d_min, d_max);
+        }
+    }
+
+    /// A kernel table for `stack` covering every node's q·d, from the cache or newly built.
+    fn table_for(&self, stack: &Stack) -> Option<Arc<KernelTable>> {
+        self.table_covering(&stack.layers, stack.thickness, stack.thickness)
+    }
+
+    /// A kernel table for `layers` covering every node's q·d for d in [d_min, d_max].
+    fn table_covering(&self, layers: &Bilayer, d_min: f64, d_max: f64) -> Option<Arc<KernelTable>> {
+        let (q_lo, q_hi) = (self.spectrum.q_low(), self.spectrum.support().1);
+        let (x_min, x_max) = (q_lo * d_min, q_hi * d_max);
+        let mut cache = self.shared.table.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(t) = cache
+            .as_ref()
+            .filter(|t| t.layers() == layers && t.covers(x_min, x_max))
+        {
+            return Some(Arc::clone(t));
+        }
+        let (mut lo, mut hi) = (x_min.ln() - TABLE_MARGIN, x_max.ln() + TABLE_MARGIN);
+        if let Some(t) = cache.as_ref().filter(|t| t.layers() == layers) {
+            let (a, b) = t.range();
+            (lo, hi) = (lo.min(a.ln()), hi.max(b.ln()));
+        }
+        let table = Arc::new(KernelTable::new(*layers, lo.exp(), hi.exp())?);
+        *cache = Some(Arc::clone(&table));
+        Some(table)
+    }
+
+    pub fn spectrum(&self) -> &Spectrum {
+        &self.spectrum
+    }
+
+    pub fn settings(&self) -> Settings {
+        self.settings
+    }
+
+    fn grid(&self, level: usize) -> Result<&Grid, Error> {
+        if let Some(g) = self.grids[level].get() {
+            return Ok(g);
+        }
+        let knots = Knots::new(
+            &self.spectrum,
+            panel_width(self.settings.rtol) / (1 << level) as f64,
+        )?;
+        Ok(self.grids[level].get_or_init(|| {
+            let mut grids = self.shared.grids.lock().unwrap_or_else(|e| e.into_inner());
+            if let Some((_, g)) = grids.iter().find(|(s, _)| *s == knots.splits) {
+                return Arc::clone(g);
+            }
+            let g = Arc::new(Grid::new(&self.spectrum, &knots));
+            grids.push((knots.splits, Arc::clone(&g)));
+            g
+        }))
+    }
+
+    fn graded(&self, level: usize) -> Result<&Graded, Error> {
+        let grid = self.grid(level)?;
+        Ok(self.graded[level].get_or_init(|| {
+            Graded::new(
+                &self.spectrum,
+                grid,
+                panel_width(self.settings.rtol) / (1 << level) as f64,
+                // Each level halves the base panels: their error falls 16-fold.
+                self.settings.rtol / 16f64.powi(level as i32),
+            )
+        }))
+    }
+
+    /// Evaluate at one stack (thickness) and nominal pressure p0 (Pa).
+    pub fn evaluate(&self, stack: &Stack, p0: f64, request: Request) -> Result<Contact, Error> {
+        if !(p0.is_finite() && p0 > 0.0) {
+            return Err(Error::invalid(
+                "nominal pressure p0",
+                p0,
+                "a finite pressure > 0 in Pa",
+            ));
+        }
+        let table = self.table_for(stack);
+        let kernels = match table.as_deref() {
+            Some(table) => Kernels::Table {
+                table,
+                d: stack.thickness,
+                ln_d: stack.thickness.ln(),
+            },
+            None => Kernels::Exact {
+                layers: &stack.layers,
+                d: stack.thickness,
+            },
+        };
+        let mut evaluations = 0;
+        let mut interface = 0;
+        let mut last = None;
+        for level in 0..=MAX_REFINE {
+            let grid = self.grid(level)?;
+            let graded = match request.interface() {
+                true => Some(self.graded(level)?),
+                false => None,
+            };
+            evaluations += grid.q.len();
+            let point = Point {
+                grid,
+                graded,
+                kernels: &kernels,
+                stack,
+                p0,
+                req: request,
+                rtol: self.settings.rtol,
+            };
+            let mut c = SCRATCH.with_borrow_mut(|s| evaluate_on(&point, evaluations, s))?;
+            interface += c.interface_kernel_evaluations;
+            c.interface_kernel_evaluations = interface;
+            evaluations = c.kernel_evaluations;
+            add_rounding_floor(&mut c);
+            let done = converged(&c, self.settings.rtol);
+            last = Some(c);
+            if done {
+                break;
+            }
+        }
+        let mut c = last.expect("at least one grid level");
+        if !converged(&c, self.settings.rtol) {
+            mark_not_reached(&mut c, self.settings.rtol);
+        }
+        Ok(c)
+    }
+}
+
+fn all_estimates(c: &Contact) -> impl Iterator<Item = &Estimate> {
+    [
+        Some(&c.g1),
+        Some(&c.area_fraction),
+        c.sigma_rms_top.as_ref(),
+        c.sigma_rms_interface.as_ref(),
+        c.tau_rms_interface.as_ref(),
+        c.e_eff_over_e_film.as_ref(),
+    ]
+    .into_iter()
+    .flatten()
+}
+
+fn converged(c: &Contact, rtol: f64) -> bool {
+    all_estimates(c).all(|e| e.err <= rtol * e.value.abs() || e.value == 0.0 && e.err == 0.0)
+}
+
+/// Relative error every contact result carries whatever the grid: the kernels' rounding
+/// ([`KERNEL_RTOL`], entering through S⁻² and f², g², i.e. twice, and once more through the
+/// σ–G relations) and the summation over some thousand nodes (64 ε). The quadrature estimate
+/// does not see these.
+pub const ROUNDING_FLOOR: f64 = 4.0 * KERNEL_RTOL + 64.0 * EPS;
+
+fn add_rounding_floor(c: &mut Contact) {
+    for e in estimates_mut(c) {
+        e.err += ROUNDING_FLOOR * e.value.abs();
+    }
+}
+
+fn estimates_mut(c: &mut Contact) -> impl Iterator<Item = &mut Estimate> {
+    [
+        Some(&mut c.g1),
+        Some(&mut c.area_fraction),
+        c.sigma_rms_top.as_mut(),
+        c.sigma_rms_interface.as_mut(),
+        c.tau_rms_interface.as_mut(),
+        c.e_eff_over_e_film.as_mut(),
+    ]
+    .into_iter()
+    .flatten()
+}
+
+fn mark_not_reached(c: &mut Contact, rtol: f64) {
+    for e in estimates_mut(c) {
+        // A NaN estimate is never reported as converged.
+        if e.err.is_nan() || e.err > rtol * e.value.abs() {
+            e.status = Termination::ToleranceNotReached;
+        }
+    }
+}

@@ -1,0 +1,83 @@
+//! The layer kernels S⁻², f², g² of one material pair at the quadrature nodes for one
+//! thickness (eqs. B8–B12 take them at q·d): from the pair's [`KernelTable`] (checked against
+//! the exact forms to [`crate::prec::TABLE_RTOL`]), or the exact forms where no table resolves
+//! them. The batch forms (`k_many`, `interface_many`) evaluate all nodes of a range at once.
+
+use crate::layer::{Bilayer, KernelTable, Nodes, Squared};
+
+/// The layer kernels at nodes q (with u = ln q) for one thickness: tabulated, or exact when no
+/// table resolves them (`layer::KernelTable`).
+pub(super) enum Kernels<'a> {
+    Table {
+        table: &'a KernelTable,
+        d: f64,
+        ln_d: f64,
+    },
+    Exact {
+        layers: &'a Bilayer,
+        d: f64,
+    },
+}
+
+impl Kernels<'_> {
+    #[inline]
+    pub(super) fn k(&self, q: f64, u: f64) -> f64 {
+        match *self {
+            Kernels::Table { table, d, ln_d } => table.k(q * d, u + ln_d),
+            Kernels::Exact { layers, d } => layers.s(q * d).powi(-2),
+        }
+    }
+
+    /// f², g² at the node.
+    #[inline]
+    pub(super) fn interface(&self, q: f64, u: f64) -> (f64, f64) {
+        match *self {
+            Kernels::Table { table, d, ln_d } => table.interface(q * d, u + ln_d),
+            Kernels::Exact { layers, d } => {
+                let r = layers.response(q * d);
+                (r.f * r.f, r.g * r.g)
+            }
+        }
+    }
+
+    /// S⁻² at the ascending nodes (q, u), into `out`.
+    pub(super) fn k_many(&self, q: &[f64], u: &[f64], out: &mut [f64]) {
+        match *self {
+            Kernels::Table { table, d, ln_d } => table.k_many(Nodes { q, u, d, ln_d }, out),
+            Kernels::Exact { .. } => {
+                for ((o, &q), &u) in out.iter_mut().zip(q).zip(u) {
+                    *o = self.k(q, u);
+                }
+            }
+        }
+    }
+
+    /// f², g² at the ascending nodes (q, u), into `f2` and `g2`.
+    pub(super) fn interface_many(&self, q: &[f64], u: &[f64], f2: &mut [f64], g2: &mut [f64]) {
+        match *self {
+            Kernels::Table { table, d, ln_d } => {
+                table.interface_many(Nodes { q, u, d, ln_d }, f2, g2)
+            }
+            Kernels::Exact { .. } => {
+                for (((fo, go), &q), &u) in f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u) {
+                    (*fo, *go) = self.interface(q, u);
+                }
+            }
+        }
+    }
+
+    #[inline]
+    pub(super) fn squared(&self, q: f64, u: f64) -> Squared {
+        match *self {
+            Kernels::Table { table, d, ln_d } => table.squared(q * d, u + ln_d),
+            Kernels::Exact { layers, d } => {
+                let r = layers.response(q * d);
+                Squared {
+                    k: r.s.powi(-2),
+                    f2: r.f * r.f,
+                    g2: r.g * r.g,
+                }
+            }
+        }
+    }
+}
