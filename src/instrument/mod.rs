@@ -4,8 +4,9 @@
 //!
 //! Conventions: heights in metres, pixel sizes in metres; a map is row-major with x along a row
 //! (as [`crate::topography::HeightMap`]); a point the instrument did not measure is NaN here,
-//! whatever marker the file used. The format is detected from the content (magic bytes), the
-//! extension only where the content has no signature.
+//! whatever marker the file used. The format is detected from the content (magic bytes), and
+//! from the extension only when no signature matches (e.g. a truncated file, which its
+//! format's reader then refuses with a message that says what is missing).
 
 use std::path::Path;
 
