@@ -13,6 +13,7 @@ mod fixtures;
 mod fuzz;
 mod golden;
 mod hostile_readers;
+mod instrument;
 mod interface_ref;
 mod kernel_table;
 mod layer;
