@@ -89,7 +89,10 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
             let Ok(j) = &run.result else {
                 unreachable!("judged above")
             };
-            (report::scene(j, Format::from(args.format))?, if j.pass() { 0 } else { 1 })
+            (
+                report::scene(j, Format::from(args.format))?,
+                if j.pass() { 0 } else { 1 },
+            )
         }
     };
     output(&args, &text)?;
@@ -142,6 +145,14 @@ fn write_extras(args: &CheckArgs, runs: &[SceneRun]) -> Result<(), Error> {
     }
     if let Some(path) = &args.parquet {
         report::parquet::write_batch(path, runs)?;
+    }
+    if let Some(path) = &args.report {
+        let meta = report::html::Meta {
+            version: env!("CARGO_PKG_VERSION").into(),
+            date: report::html::utc_date(),
+            command_line: std::env::args().collect::<Vec<_>>().join(" "),
+        };
+        report::write_file(path, &report::html::page(runs, &meta)?)?;
     }
     Ok(())
 }

@@ -1,9 +1,9 @@
 //! The arguments of `coatcheck check`: its own flags, and one flag per scene key (built from
 //! the scene's key table) whose values override the scene file's.
 
+use super::OutputFormat;
 use clap::builder::ValueParser;
 use clap::{Arg, ArgAction, ArgMatches, Command, FromArgMatches};
-use super::OutputFormat;
 use coatcheck::scene::{Key, Value};
 use std::path::PathBuf;
 
@@ -59,6 +59,11 @@ pub struct CheckArgs {
     /// if both pass.
     #[arg(long, conflicts_with = "sweep_thickness")]
     pub verify: bool,
+    /// Also write the qualification report as one self-contained HTML page (verdict, checks,
+    /// what would make a failing design pass, inputs with sources, plots, warnings,
+    /// uncertainty), atomically; a batch gets a summary and a section per scene.
+    #[arg(long, value_name = "FILE.html", conflicts_with = "sweep_thickness")]
+    pub report: Option<PathBuf>,
     /// Also write a JUnit XML report (a test case per scene and check), atomically.
     #[arg(long, value_name = "FILE")]
     pub junit: Option<PathBuf>,

@@ -22,7 +22,7 @@ fn opt(e: Option<Estimate>, f: impl Fn(f64) -> String) -> (String, String) {
 }
 
 /// The scene's inputs as (quantity, value) rows in human units.
-fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
+pub(crate) fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
     let mut rows = Vec::new();
     let r = &scene.roughness;
     match &r.source {
@@ -151,21 +151,15 @@ fn check_cells(c: &CheckResult) -> (String, String) {
     (f(c.value.value), limit)
 }
 
-/// The default output: scene, results, checks, d_min, warnings.
-pub fn human(scene: &Scene, outcome: &Outcome) -> String {
-    let mut out = String::new();
-    let mut t = table(&["scene", "value"]);
-    for (k, v) in scene_rows(scene) {
-        t.add_row(vec![k, v]);
-    }
-    out += &format!("{t}\n");
-
+/// The results at the design thickness as (quantity, value, error estimate), as the table
+/// shows them.
+pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
     let ev = &outcome.evaluation;
     let c = &ev.contact;
-    let mut t = table(&["result", "value", "error estimate"]);
+    let mut rows = Vec::new();
     let mut row = |name: &str, e: Option<Estimate>, f: &dyn Fn(f64) -> String| {
         let (v, err) = opt(e, f);
-        t.add_row(vec![name.to_string(), v, err]);
+        rows.push([name.to_string(), v, err]);
     };
     let plain = |x: f64| sig(x, 4);
     let mpa_unit = |x: f64| format!("{} MPa", mpa(x));
@@ -193,48 +187,70 @@ pub fn human(scene: &Scene, outcome: &Outcome) -> String {
         ev.tau_peak,
         &mpa_unit,
     );
-    t.add_row(vec![
+    rows.push([
         "share of G(q1) from the lowest octave".into(),
         sig(c.low_octave_share, 3),
         String::new(),
     ]);
     if let Some(p) = ev.bond_exceedance {
-        t.add_row(vec![
-            "P(|tau| > bond strength)".into(),
-            sig(p, 3),
-            String::new(),
-        ]);
+        rows.push(["P(|tau| > bond strength)".into(), sig(p, 3), String::new()]);
     }
     if let Some(p) = ev.yield_exceedance {
-        t.add_row(vec![
+        rows.push([
             "P(sigma_interface > yield strength)".into(),
             sig(p, 3),
             String::new(),
         ]);
     }
-    out += &format!("{t}\n");
+    rows
+}
 
+/// The checks as (check, value, limit, margin, result), as the table shows them.
+pub(crate) fn check_rows(outcome: &Outcome) -> Vec<[String; 5]> {
+    let ev = &outcome.evaluation;
+    outcome
+        .checks
+        .iter()
+        .map(|ch| {
+            let (mut v, l) = check_cells(ch);
+            if ch.kind == CheckKind::SubstrateYield {
+                v += if ch.value.value == ev.mean_contact_pressure.value {
+                    " (mean contact pressure)"
+                } else {
+                    " (interface peak)"
+                };
+            }
+            let margin = ch
+                .margin
+                .map(|m| format!("{:+.1} %", 100.0 * m))
+                .unwrap_or_else(|| "-".into());
+            [
+                ch.kind.name().to_string(),
+                v,
+                l,
+                margin,
+                if ch.pass { "PASS" } else { "FAIL" }.into(),
+            ]
+        })
+        .collect()
+}
+
+/// The default output: scene, results, checks, d_min, warnings.
+pub fn human(scene: &Scene, outcome: &Outcome) -> String {
+    let mut out = String::new();
+    let mut t = table(&["scene", "value"]);
+    for (k, v) in scene_rows(scene) {
+        t.add_row(vec![k, v]);
+    }
+    out += &format!("{t}\n");
+    let mut t = table(&["result", "value", "error estimate"]);
+    for r in result_rows(outcome) {
+        t.add_row(r.to_vec());
+    }
+    out += &format!("{t}\n");
     let mut t = table(&["check", "value", "limit", "margin", "result"]);
-    for ch in &outcome.checks {
-        let (mut v, l) = check_cells(ch);
-        if ch.kind == CheckKind::SubstrateYield {
-            v += if ch.value.value == ev.mean_contact_pressure.value {
-                " (mean contact pressure)"
-            } else {
-                " (interface peak)"
-            };
-        }
-        let margin = ch
-            .margin
-            .map(|m| format!("{:+.1} %", 100.0 * m))
-            .unwrap_or_else(|| "-".into());
-        t.add_row(vec![
-            ch.kind.name().to_string(),
-            v,
-            l,
-            margin,
-            if ch.pass { "PASS" } else { "FAIL" }.into(),
-        ]);
+    for r in check_rows(outcome) {
+        t.add_row(r.to_vec());
     }
     out += &format!("{t}\n");
 

@@ -12,11 +12,14 @@
 //!   the design thickness marked.
 
 use crate::Error;
+use crate::batch::SceneRun;
+use crate::check::levers::levers;
 use crate::check::{CheckKind, Checker, Outcome, log_space};
 use crate::contact::{NormalStress, tau_exceedance};
 use crate::figures::{Axis, Figure, Series};
-use crate::report::plot::{Band, Extras, Legend, Marker, svg};
+use crate::pipeline::Judged;
 use crate::psd::Spectrum;
+use crate::report::plot::{Band, Extras, Legend, Marker, svg};
 
 /// Points per plotted curve.
 const POINTS: usize = 121;
@@ -325,6 +328,153 @@ pub fn utilisation_plot(checker: &Checker, outcome: &Outcome) -> Result<Option<P
     }))
 }
 
+/// The section of one judged scene: its checks with utilisation, what would make a failing
+/// design pass, inputs with sources, results, Persson against exact, plots, warnings and the
+/// uncertainty. The spectrum and checker are rebuilt from the scene (a few milliseconds).
+pub fn section(title: &str, j: &Judged) -> Result<Section, Error> {
+    let scene = &j.scene;
+    let outcome = &j.outcome;
+    let (spectrum, _) = scene.roughness.spectrum()?;
+    let checker = Checker::new(&spectrum, scene.design(), scene.settings)?;
+    let checks = super::check::check_rows(outcome)
+        .into_iter()
+        .zip(&outcome.checks)
+        .map(|(r, ch)| {
+            let used = ch
+                .margin
+                .map_or("-".into(), |m| format!("{:.1} %", 100.0 * (1.0 - m)));
+            [
+                r[0].clone(),
+                r[1].clone(),
+                r[2].clone(),
+                used,
+                r[3].clone(),
+                r[4].clone(),
+            ]
+        })
+        .collect();
+    let headline = match outcome
+        .governing
+        .and_then(|g| outcome.checks.iter().find(|c| c.kind == g))
+    {
+        Some(c) => format!(
+            "governing check: {}{}",
+            c.kind.name(),
+            c.margin
+                .map(|m| format!(" (utilisation {:.1} %)", 100.0 * (1.0 - m)))
+                .unwrap_or_default()
+        ),
+        None => "no check enabled".into(),
+    };
+    let levers = levers(&spectrum, checker.design(), scene.settings, outcome)?
+        .iter()
+        .map(|l| l.describe())
+        .collect();
+    let mut inputs = super::check::scene_rows(scene);
+    for (what, source) in [
+        (&scene.film.name, &scene.film.source),
+        (&scene.substrate.name, &scene.substrate.source),
+        (&scene.bond.name, &scene.bond.source),
+    ] {
+        inputs.push((format!("source of {what}"), source.clone()));
+    }
+    let results = super::check::result_rows(outcome)
+        .into_iter()
+        .map(|[k, v, e]| {
+            let shown = if e.is_empty() {
+                v
+            } else {
+                format!("{v} ± {e}")
+            };
+            (k, shown)
+        })
+        .collect();
+    let mut plots = vec![spectrum_plot(&spectrum)?];
+    plots.extend(stress_plots(&checker, outcome)?);
+    plots.extend(utilisation_plot(&checker, outcome)?);
+    let mut exact = Vec::new();
+    let c = &outcome.evaluation.contact;
+    let (lo, _) = spectrum.support();
+    let mut uncertainty = vec![
+        format!(
+            "Numerical: each result above carries its estimated numerical error (relative              tolerance {}).",
+            sig(scene.settings.rtol)
+        ),
+        format!(
+            "Model: {} of the contact stress variance comes from the lowest octave of the              spectrum (q_L d = {}). Above 0.5, exact solutions gave 2.7 times Persson's contact              area or more, and Persson's contact pressures are then conservative; run              --verify on a measured height map to check.",
+            sig(c.low_octave_share),
+            sig(lo * outcome.thickness)
+        ),
+        "Materials: the moduli and strengths are the library's values (sources above); their          spread is not propagated."
+            .into(),
+    ];
+    if let Some(e) = &j.exact {
+        for row in crate::verify::check_rows(&outcome.evaluation, &e.verification) {
+            let show = |x: crate::prec::Estimate| {
+                if row.key.ends_with("_pa") {
+                    format!("{} ± {} MPa", mpa(x.value), mpa(x.err))
+                } else {
+                    format!("{} ± {}", sig(x.value), sig(x.err))
+                }
+            };
+            exact.push([
+                row.name.to_string(),
+                row.persson.map_or("-".into(), show),
+                show(row.exact),
+            ]);
+        }
+        let v = &e.verification;
+        uncertainty.push(format!(
+            "Exact check on {} ({} x {}): exact A/A0 / Persson's = {}.",
+            e.map.display(),
+            v.nx,
+            v.ny,
+            sig(v.area_fraction.value / c.area_fraction.value)
+        ));
+    }
+    Ok(Section {
+        title: title.to_string(),
+        pass: j.pass(),
+        headline,
+        checks,
+        levers,
+        inputs,
+        results,
+        exact,
+        plots,
+        warnings: j.warnings.clone(),
+        uncertainty,
+    })
+}
+
+/// The page of a run: one section per scene (a scene that could not be judged gets a section
+/// with its error).
+pub fn page(runs: &[SceneRun], meta: &Meta) -> Result<String, Error> {
+    let sections = runs
+        .iter()
+        .map(|run| {
+            let title = run.file.display().to_string();
+            match &run.result {
+                Ok(j) => section(&title, j),
+                Err(e) => Ok(Section {
+                    title,
+                    pass: false,
+                    headline: format!("could not be judged: {e}"),
+                    checks: Vec::new(),
+                    levers: Vec::new(),
+                    inputs: Vec::new(),
+                    results: Vec::new(),
+                    exact: Vec::new(),
+                    plots: Vec::new(),
+                    warnings: Vec::new(),
+                    uncertainty: Vec::new(),
+                }),
+            }
+        })
+        .collect::<Result<Vec<_>, Error>>()?;
+    Ok(document(&sections, meta))
+}
+
 /// A number to four significant digits.
 fn sig(x: f64) -> String {
     crate::report::sig(x, 4)
@@ -469,13 +619,16 @@ pub fn document(sections: &[Section], meta: &Meta) -> String {
             body += &section_html(s, 2);
         }
     }
-    format!(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
-         <title>coatcheck report</title><style>{STYLE}</style></head><body>\n{body}\
-         <p class=\"meta\">coatcheck {} · {} · <code>{}</code></p>\n</body></html>\n",
+    let meta = format!(
+        "<p class=\"meta\">coatcheck {} · {} · <code>{}</code></p>\n",
         escape(&meta.version),
         escape(&meta.date),
         escape(&meta.command_line)
+    );
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <title>coatcheck report</title><style>{STYLE}</style></head><body>\n{meta}{body}\
+         </body></html>\n"
     )
 }
 

@@ -243,6 +243,7 @@ where
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
             });
     }
+    let mut verticals = 0;
     for m in &extras.markers {
         let line = if m.vertical {
             let v = m.at / fig.x.scale;
@@ -260,11 +261,21 @@ where
         chart
             .draw_series(DashedLineSeries::new(line, 6, 4, grey.stroke_width(2)))
             .map_err(plot_error)?;
-        // Vertical lines are labelled just right of their top end, horizontal ones just above
-        // their right end (clear of the axes' tick labels).
+        // Vertical lines are labelled just right of their top end, every second one at its
+        // bottom end so that neighbours do not overlap; horizontal ones just above their right
+        // end (clear of the axes' tick labels).
         let style = ("sans-serif", 13).into_font().color(&BLACK);
         let (anchor, offset, pos) = if m.vertical {
-            ((line[0].0, y_hi), (4, 4), Pos::new(HPos::Left, VPos::Top))
+            verticals += 1;
+            if verticals % 2 == 1 {
+                ((line[0].0, y_hi), (4, 4), Pos::new(HPos::Left, VPos::Top))
+            } else {
+                (
+                    (line[0].0, y_lo),
+                    (4, -4),
+                    Pos::new(HPos::Left, VPos::Bottom),
+                )
+            }
         } else {
             (
                 (x_hi, line[0].1),

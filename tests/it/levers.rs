@@ -2,9 +2,9 @@
 //! design pass, and a step past it fails again, re-judged by a fresh checker (the paper's
 //! spectrum and materials, at thicknesses where one check or both fail).
 
+use coatcheck::check::levers::{Lever, REL_TOL, SPAN, levers};
 use coatcheck::check::{Checker, Design};
 use coatcheck::layer::{Bilayer, Elastic};
-use coatcheck::check::levers::{Lever, REL_TOL, SPAN, levers};
 use coatcheck::prec::Settings;
 use coatcheck::psd::{Spectrum, Tabulated};
 

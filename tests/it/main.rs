@@ -22,6 +22,8 @@ mod output;
 mod psd_convert;
 mod psd_moments;
 mod psd_read;
+mod report_browser;
+mod schema;
 mod topography;
 mod validity;
 mod verify_check;

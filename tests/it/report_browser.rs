@@ -10,7 +10,12 @@ use std::process::Command;
 fn chromium() -> Option<&'static str> {
     ["chromium", "chromium-browser", "google-chrome"]
         .into_iter()
-        .find(|b| Command::new(b).arg("--version").output().is_ok_and(|o| o.status.success()))
+        .find(|b| {
+            Command::new(b)
+                .arg("--version")
+                .output()
+                .is_ok_and(|o| o.status.success())
+        })
 }
 
 /// Screenshot `html` into `png` at the given width and height (px).
@@ -34,14 +39,18 @@ fn screenshot(browser: &str, html: &Path, png: &Path, size: (u32, u32)) {
         .arg(format!("file://{}", html.display()))
         .output()
         .unwrap();
-    assert!(png.exists(), "no screenshot: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        png.exists(),
+        "no screenshot: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 /// Share of pixels that differ from the most common colour (the background).
 fn ink(png: &Path) -> f64 {
     let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(png).unwrap()));
     let mut reader = decoder.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let mut buf = vec![0; reader.output_buffer_size()];
     let info = reader.next_frame(&mut buf).unwrap();
     let bpp = info.color_type.samples();
     let pixels: Vec<&[u8]> = buf[..info.buffer_size()].chunks(bpp).collect();
@@ -71,7 +80,12 @@ fn the_report_renders_with_its_plots_axes_and_labels() {
         "--report",
         html.to_str().unwrap(),
     ]);
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let page = std::fs::read_to_string(&html).unwrap();
     for want in [
         "PASS",
