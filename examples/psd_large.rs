@@ -31,7 +31,7 @@ fn generate(n: usize, path: &Path) {
         seed: 1,
     };
     let map = self_affine_map(&spec).expect("synth");
-    write_height_map(path, &map, &[]).expect("write");
+    coatcheck::report::write_with(path, |w| write_height_map(w, &map, &[])).expect("write");
 }
 
 fn median(mut v: Vec<f64>) -> f64 {

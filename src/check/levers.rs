@@ -43,36 +43,6 @@ pub struct Lever {
     pub unit: &'static str,
 }
 
-impl Lever {
-    /// "d >= 12.3 um (now 5 um)" in the units people read.
-    pub fn describe(&self) -> String {
-        let (scale, unit, what) = match self.name {
-            "thickness" => (1e-6, "um", "film thickness"),
-            "bond_strength" => (1e6, "MPa", "bond shear strength"),
-            "yield_strength" => (1e6, "MPa", "substrate yield strength"),
-            "pressure" => (1e6, "MPa", "nominal pressure"),
-            _ => (
-                1e-6,
-                "um",
-                "rms height of the lowest octave of the roughness",
-            ),
-        };
-        let show = |v: f64| crate::report::sig(v / scale, 4);
-        match self.value {
-            Some(v) => format!(
-                "{what} {} {} {unit} (now {} {unit})",
-                self.relation,
-                show(v),
-                show(self.current)
-            ),
-            None => format!(
-                "{what}: no value down to {} of the present one passes",
-                crate::report::sig(SPAN, 1)
-            ),
-        }
-    }
-}
-
 fn all_stress_checks_pass(
     spectrum: &Spectrum,
     design: &Design,

@@ -117,11 +117,15 @@ pub fn run(a: SynthArgs) -> Result<i32, Error> {
                 scans: (0..k).map(|j| map.row(j * map.ny / k).to_vec()).collect(),
                 periodic: true,
             };
-            write_profile(&a.output, &p, std::slice::from_ref(&note))?;
+            coatcheck::report::write_with(&a.output, |w| {
+                write_profile(w, &p, std::slice::from_ref(&note))
+            })?;
             format!("{k} line scans of {} points, rows of", map.nx)
         }
         None => {
-            write_height_map(&a.output, &map, std::slice::from_ref(&note))?;
+            coatcheck::report::write_with(&a.output, |w| {
+                write_height_map(w, &map, std::slice::from_ref(&note))
+            })?;
             "the height map".to_string()
         }
     };

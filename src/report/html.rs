@@ -13,7 +13,7 @@
 
 use crate::Error;
 use crate::batch::SceneRun;
-use crate::check::levers::levers;
+use crate::check::levers::{Lever, SPAN, levers};
 use crate::check::{CheckKind, Checker, Outcome, log_space};
 use crate::contact::{NormalStress, tau_exceedance};
 use crate::figures::{Axis, Figure, Series};
@@ -368,7 +368,7 @@ pub fn section(title: &str, j: &Judged) -> Result<Section, Error> {
     };
     let levers = levers(&spectrum, checker.design(), scene.settings, outcome)?
         .iter()
-        .map(|l| l.describe())
+        .map(lever_text)
         .collect();
     let mut inputs = super::check::scene_rows(scene);
     for (what, source) in [
@@ -473,6 +473,34 @@ pub fn page(runs: &[SceneRun], meta: &Meta) -> Result<String, Error> {
         })
         .collect::<Result<Vec<_>, Error>>()?;
     Ok(document(&sections, meta))
+}
+
+/// "film thickness >= 12.3 um (now 5 um)", in the units people read.
+pub fn lever_text(lever: &Lever) -> String {
+    let (scale, unit, what) = match lever.name {
+        "thickness" => (1e-6, "um", "film thickness"),
+        "bond_strength" => (1e6, "MPa", "bond shear strength"),
+        "yield_strength" => (1e6, "MPa", "substrate yield strength"),
+        "pressure" => (1e6, "MPa", "nominal pressure"),
+        _ => (
+            1e-6,
+            "um",
+            "rms height of the lowest octave of the roughness",
+        ),
+    };
+    let show = |v: f64| super::sig(v / scale, 4);
+    match lever.value {
+        Some(v) => format!(
+            "{what} {} {} {unit} (now {} {unit})",
+            lever.relation,
+            show(v),
+            show(lever.current)
+        ),
+        None => format!(
+            "{what}: no value down to {} of the present one passes",
+            super::sig(SPAN, 1)
+        ),
+    }
 }
 
 /// A number to four significant digits.

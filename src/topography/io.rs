@@ -30,7 +30,7 @@ use super::{HeightMap, Profile};
 use crate::error::Error;
 use crate::textio::{self, Header, LineReader, Sep};
 use crate::units::{Dim, parse_quantity, unit_scale};
-use std::io::{BufReader, Read};
+use std::io::{BufReader, Read, Write};
 use std::path::Path;
 
 /// The most heights in a map or in all line scans of one file (2²⁶, 512 MiB as f64).
@@ -611,55 +611,56 @@ fn finish_map(
     })
 }
 
-/// Write a height map (heights in m) with its metadata comment and optional extra comments.
-pub fn write_height_map(path: &Path, map: &HeightMap, comments: &[String]) -> Result<(), Error> {
-    crate::report::write_with(path, |w| {
-        writeln!(
-            w,
-            "# coatcheck height map: nx = {}, ny = {}, dx = {:e} m, dy = {:e} m, periodic = {}, z unit = m",
-            map.nx, map.ny, map.dx, map.dy, map.periodic
-        )?;
-        for c in comments {
-            writeln!(w, "# {c}")?;
-        }
-        for iy in 0..map.ny {
-            let row = map.row(iy);
-            for (ix, v) in row.iter().enumerate() {
-                if ix > 0 {
-                    w.write_all(b",")?;
-                }
-                write!(w, "{v:e}")?;
+/// A height map (heights in m) as text, with its metadata comment and optional extra comments
+/// (files are written through `report::write_with`).
+pub fn write_height_map(
+    w: &mut dyn Write,
+    map: &HeightMap,
+    comments: &[String],
+) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "# coatcheck height map: nx = {}, ny = {}, dx = {:e} m, dy = {:e} m, periodic = {}, z unit = m",
+        map.nx, map.ny, map.dx, map.dy, map.periodic
+    )?;
+    for c in comments {
+        writeln!(w, "# {c}")?;
+    }
+    for iy in 0..map.ny {
+        let row = map.row(iy);
+        for (ix, v) in row.iter().enumerate() {
+            if ix > 0 {
+                w.write_all(b",")?;
             }
-            w.write_all(b"\n")?;
+            write!(w, "{v:e}")?;
         }
-        Ok(())
-    })
+        w.write_all(b"\n")?;
+    }
+    Ok(())
 }
 
-/// Write line scans as `x (m), z1 (m), …` with the metadata comment.
-pub fn write_profile(path: &Path, p: &Profile, comments: &[String]) -> Result<(), Error> {
-    crate::report::write_with(path, |w| {
-        writeln!(
-            w,
-            "# coatcheck line scans: dx = {:e} m, periodic = {}, z unit = m",
-            p.dx, p.periodic
-        )?;
-        for c in comments {
-            writeln!(w, "# {c}")?;
-        }
-        write!(w, "x (m)")?;
-        for k in 0..p.scans.len() {
-            write!(w, ",z{} (m)", k + 1)?;
+/// Line scans as text, `x (m), z1 (m), …`, with the metadata comment.
+pub fn write_profile(w: &mut dyn Write, p: &Profile, comments: &[String]) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "# coatcheck line scans: dx = {:e} m, periodic = {}, z unit = m",
+        p.dx, p.periodic
+    )?;
+    for c in comments {
+        writeln!(w, "# {c}")?;
+    }
+    write!(w, "x (m)")?;
+    for k in 0..p.scans.len() {
+        write!(w, ",z{} (m)", k + 1)?;
+    }
+    writeln!(w)?;
+    let n = p.scans.first().map_or(0, Vec::len);
+    for i in 0..n {
+        write!(w, "{:e}", i as f64 * p.dx)?;
+        for s in &p.scans {
+            write!(w, ",{:e}", s[i])?;
         }
         writeln!(w)?;
-        let n = p.scans.first().map_or(0, Vec::len);
-        for i in 0..n {
-            write!(w, "{:e}", i as f64 * p.dx)?;
-            for s in &p.scans {
-                write!(w, ",{:e}", s[i])?;
-            }
-            writeln!(w)?;
-        }
-        Ok(())
-    })
+    }
+    Ok(())
 }

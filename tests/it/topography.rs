@@ -302,7 +302,7 @@ fn input_line(r: Result<impl std::fmt::Debug, Error>) -> (usize, String) {
 fn height_map_round_trips_through_its_file() {
     let m = self_affine_map(&SynthSpec { n: 32, ..spec(5) }).unwrap();
     let p = tmp("map_rt.csv");
-    write_height_map(&p, &m, &["a note".into()]).unwrap();
+    coatcheck::report::write_with(&p, |w| write_height_map(w, &m, &["a note".into()])).unwrap();
     assert_eq!(sniff(&p).unwrap(), Some(HeightKind::Map));
     let back = read_height_map(&p, &MapOptions::default()).unwrap();
     assert_eq!(
@@ -408,7 +408,7 @@ fn line_scans_with_x_column_units_and_round_trip() {
         periodic: true,
     };
     let path = tmp("scans_rt.csv");
-    write_profile(&path, &pr, &[]).unwrap();
+    coatcheck::report::write_with(&path, |w| write_profile(w, &pr, &[])).unwrap();
     assert_eq!(sniff(&path).unwrap(), Some(HeightKind::Lines));
     let back = read_profile(&path, &ProfileOptions::default()).unwrap();
     assert_eq!(back.scans, pr.scans);
