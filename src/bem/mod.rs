@@ -462,34 +462,7 @@ where
             need_fresh = false;
             since_fresh = 0;
         }
-        // g ← u − h − ḡ with ḡ the mean of u − h on the contact set.
-        let parts = chunked(&mut g, |o, gc| {
-            let (mut s, mut k) = (0.0, 0.0);
-            for ((gi, ui), (hi, pi)) in gc.iter_mut().zip(&u[o..]).zip(h[o..].iter().zip(&p[o..])) {
-                *gi = ui - hi;
-                if *pi > 0.0 {
-                    s += *gi;
-                    k += 1.0;
-                }
-            }
-            [s, k]
-        });
-        let (sum_c, n_c) = (sum(&parts, 0), sum(&parts, 1));
-        let n_c = n_c.max(1.0);
-        let gbar = sum_c / n_c;
-        let parts = chunked(&mut g, |o, gc| {
-            let (mut g2, mut pen) = (0.0, 0.0f64);
-            for (gi, pi) in gc.iter_mut().zip(&p[o..]) {
-                *gi -= gbar;
-                if *pi > 0.0 {
-                    g2 += *gi * *gi;
-                } else {
-                    pen = pen.max(-*gi);
-                }
-            }
-            [g2, pen]
-        });
-        let (g2, pen) = (sum(&parts, 0), max(&parts, 1));
+        let (g2, pen, n_c) = measure_gap(&mut g, &u, &h, &p);
         gap_rms = (g2 / n_c).sqrt();
         penetration = pen;
         if (gap_rms <= tol && penetration <= tol) || iterations >= settings.max_iter {
@@ -500,30 +473,13 @@ where
             break;
         }
         iterations += 1;
-        // Conjugate direction on the contact set, and Σ g·t, mean of t there.
-        let direction = |t: &mut [f64], beta: f64| {
-            let parts = chunked(t, |o, tc| {
-                let (mut num, mut sum_t) = (0.0, 0.0);
-                for (ti, (gi, pi)) in tc.iter_mut().zip(g[o..].iter().zip(&p[o..])) {
-                    if *pi > 0.0 {
-                        *ti = gi + beta * *ti;
-                        num += gi * *ti;
-                        sum_t += *ti;
-                    } else {
-                        *ti = 0.0;
-                    }
-                }
-                [num, sum_t]
-            });
-            (sum(&parts, 0), sum(&parts, 1))
-        };
         let beta = if iterations > 1 { g2 / g_old } else { 0.0 };
         g_old = g2;
-        let (mut num, mut sum_t) = direction(&mut t, beta);
+        let (mut num, mut sum_t) = direction(&mut t, &g, &p, beta);
         if num <= 0.0 && beta != 0.0 {
             // Not a descent direction on the new contact set: restart from the gradient.
             restarts += 1;
-            (num, sum_t) = direction(&mut t, 0.0);
+            (num, sum_t) = direction(&mut t, &g, &p, 0.0);
         }
         let tbar = sum_t / n_c;
         convolve(&mut plan, &t, &mut r);
@@ -550,28 +506,7 @@ where
             });
         }
         let step = num / den;
-        // Update, project to p ≥ 0, re-admit penetrating points, rescale to the load.
-        let parts = chunked(&mut p, |o, pc| {
-            let (mut total, mut clamped, mut readmitted) = (0.0, 0.0, 0.0);
-            for (pi, (ti, gi)) in pc.iter_mut().zip(t[o..].iter().zip(&g[o..])) {
-                if *pi > 0.0 {
-                    let v = *pi - step * ti;
-                    if v <= 0.0 {
-                        clamped = 1.0;
-                        *pi = 0.0;
-                    } else {
-                        *pi = v;
-                    }
-                }
-                if *pi == 0.0 && *gi < 0.0 {
-                    *pi = -step * gi;
-                    readmitted = 1.0;
-                }
-                total += *pi;
-            }
-            [total, clamped, readmitted]
-        });
-        let (total, clamped, readmitted) = (sum(&parts, 0), max(&parts, 1), max(&parts, 2));
+        let (total, clamped, readmitted) = project(&mut p, &t, &g, step);
         let scale = p0 * n as f64 / total;
         let linear = clamped == 0.0 && readmitted == 0.0 && since_fresh < REFRESH_EVERY;
         if linear {
@@ -599,6 +534,111 @@ where
     } else {
         Termination::ToleranceNotReached
     };
+    Ok(solution(
+        surface,
+        p0,
+        p,
+        g,
+        Convergence {
+            iterations,
+            restarts,
+            gap_rms_in_contact: gap_rms,
+            max_penetration: penetration,
+            tolerance: tol,
+            load_error: 0.0,
+            status,
+        },
+    ))
+}
+
+/// g ← u − h − ḡ with ḡ the mean of u − h on the contact set (p > 0); returns Σ_c g², the
+/// largest penetration −g outside the contact set and the number of contact points (≥ 1).
+fn measure_gap(g: &mut [f64], u: &[f64], h: &[f64], p: &[f64]) -> (f64, f64, f64) {
+    let parts = chunked(g, |o, gc| {
+        let (mut s, mut k) = (0.0, 0.0);
+        for ((gi, ui), (hi, pi)) in gc.iter_mut().zip(&u[o..]).zip(h[o..].iter().zip(&p[o..])) {
+            *gi = ui - hi;
+            if *pi > 0.0 {
+                s += *gi;
+                k += 1.0;
+            }
+        }
+        [s, k]
+    });
+    let (sum_c, n_c) = (sum(&parts, 0), sum(&parts, 1));
+    let n_c = n_c.max(1.0);
+    let gbar = sum_c / n_c;
+    let parts = chunked(g, |o, gc| {
+        let (mut g2, mut pen) = (0.0, 0.0f64);
+        for (gi, pi) in gc.iter_mut().zip(&p[o..]) {
+            *gi -= gbar;
+            if *pi > 0.0 {
+                g2 += *gi * *gi;
+            } else {
+                pen = pen.max(-*gi);
+            }
+        }
+        [g2, pen]
+    });
+    let (g2, pen) = (sum(&parts, 0), max(&parts, 1));
+    (g2, pen, n_c)
+}
+
+/// t ← g + β t on the contact set (0 elsewhere); returns Σ_c g·t and Σ_c t.
+fn direction(t: &mut [f64], g: &[f64], p: &[f64], beta: f64) -> (f64, f64) {
+    let parts = chunked(t, |o, tc| {
+        let (mut num, mut sum_t) = (0.0, 0.0);
+        for (ti, (gi, pi)) in tc.iter_mut().zip(g[o..].iter().zip(&p[o..])) {
+            if *pi > 0.0 {
+                *ti = gi + beta * *ti;
+                num += gi * *ti;
+                sum_t += *ti;
+            } else {
+                *ti = 0.0;
+            }
+        }
+        [num, sum_t]
+    });
+    (sum(&parts, 0), sum(&parts, 1))
+}
+
+/// p ← p − step·t on the contact set, projected to p ≥ 0, with penetrating points (g < 0)
+/// re-admitted at −step·g; returns Σ p and whether any point was clamped or re-admitted.
+fn project(p: &mut [f64], t: &[f64], g: &[f64], step: f64) -> (f64, f64, f64) {
+    let parts = chunked(p, |o, pc| {
+        let (mut total, mut clamped, mut readmitted) = (0.0, 0.0, 0.0);
+        for (pi, (ti, gi)) in pc.iter_mut().zip(t[o..].iter().zip(&g[o..])) {
+            if *pi > 0.0 {
+                let v = *pi - step * ti;
+                if v <= 0.0 {
+                    clamped = 1.0;
+                    *pi = 0.0;
+                } else {
+                    *pi = v;
+                }
+            }
+            if *pi == 0.0 && *gi < 0.0 {
+                *pi = -step * gi;
+                readmitted = 1.0;
+            }
+            total += *pi;
+        }
+        [total, clamped, readmitted]
+    });
+    (sum(&parts, 0), max(&parts, 1), max(&parts, 2))
+}
+
+/// The solution's statistics from the converged pressure and gap.
+fn solution(
+    surface: &Surface,
+    p0: f64,
+    p: Vec<f64>,
+    g: Vec<f64>,
+    convergence: Convergence,
+) -> BemSolution {
+    let (nx, ny) = (surface.nx, surface.ny);
+    let n = nx * ny;
+    let (tol, status) = (convergence.tolerance, convergence.status);
     let in_contact: Vec<f64> = p.iter().copied().filter(|&v| v > 0.0).collect();
     let n_c = in_contact.len();
     let near = g
@@ -610,28 +650,23 @@ where
     let area_fraction = Estimate::new(n_c as f64 / nf, (near as f64 / nf).max(EPS), status);
     let mean_p = p.iter().sum::<f64>() / nf;
     let sigma_rms_top = (p.iter().map(|v| (v - p0) * (v - p0)).sum::<f64>() / nf).sqrt();
-    Ok(BemSolution {
+    BemSolution {
         nx,
         ny,
         dx: surface.dx,
         dy: surface.dy,
         p0,
-        h_rms,
+        h_rms: surface.h_rms(),
         contact_pressure: FieldStats::of(&in_contact),
         pressure: p,
         gap: g,
         area_fraction,
         sigma_rms_top,
         convergence: Convergence {
-            iterations,
-            restarts,
-            gap_rms_in_contact: gap_rms,
-            max_penetration: penetration,
-            tolerance: tol,
             load_error: (mean_p - p0).abs() / p0,
-            status,
+            ..convergence
         },
-    })
+    }
 }
 
 /// Elements per parallel task of the pointwise passes.
