@@ -18,6 +18,7 @@ pub mod check;
 pub mod contact;
 pub mod error;
 pub mod figures;
+pub mod instrument;
 pub mod junit;
 pub mod layer;
 pub mod material;

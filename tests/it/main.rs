@@ -12,6 +12,7 @@ mod figures;
 mod fixtures;
 mod fuzz;
 mod golden;
+mod instrument_bin;
 mod interface_ref;
 mod kernel_table;
 mod layer;
