@@ -679,3 +679,167 @@ fn corrupted_header_bytes_never_panic() {
         }
     }
 }
+
+// Small files written here from the documented layouts, for the variants the samples do not
+// have (sign flip and finest phase resolution, padded rows, 16-bit MI, 32-bit FRT images in
+// the multi-image block). Expected heights are worked out from the layout by hand.
+
+fn synthetic(name: &str) -> PathBuf {
+    PathBuf::from(format!("synthetic.{name}"))
+}
+
+fn assert_heights(c: &Channel, want: &[f64]) {
+    assert_eq!(c.z.len(), want.len(), "{}", c.name);
+    for (k, (&got, &w)) in c.z.iter().zip(want).enumerate() {
+        assert!(
+            (got.is_nan() && w.is_nan()) || rel(got, w) <= 1e-15,
+            "{} point {k}: {got:e}, expected {w:e}",
+            c.name
+        );
+    }
+}
+
+#[test]
+fn metropro_sign_resolution_and_invalid_marker() {
+    let mut h = vec![0u8; 834];
+    h[..4].copy_from_slice(&[0x88, 0x1b, 0x03, 0x6f]);
+    h[4..6].copy_from_slice(&1u16.to_be_bytes());
+    h[6..10].copy_from_slice(&834u32.to_be_bytes());
+    h[68..70].copy_from_slice(&3u16.to_be_bytes());
+    h[70..72].copy_from_slice(&2u16.to_be_bytes());
+    h[164..168].copy_from_slice(&0.5f32.to_be_bytes());
+    h[168..172].copy_from_slice(&6.328e-7f32.to_be_bytes());
+    h[176..180].copy_from_slice(&1.25f32.to_be_bytes());
+    h[184..188].copy_from_slice(&2e-6f32.to_be_bytes());
+    h[218..220].copy_from_slice(&2i16.to_be_bytes());
+    h[232..234].copy_from_slice(&1i16.to_be_bytes());
+    let counts = [0i32, 1, -131072, 2147483640, 100, i32::MAX];
+    h.extend(counts.iter().flat_map(|c| c.to_be_bytes()));
+    let r = metropro::read_metropro(&synthetic("dat"), &h).unwrap();
+    assert_eq!(r.channels.len(), 1, "no intensity buckets");
+    let c = &r.channels[0];
+    assert_eq!(
+        (c.nx, c.ny, c.dx, c.dy),
+        (3, 2, f64::from(2e-6f32), f64::from(2e-6f32))
+    );
+    // One count is -(0.5 · 1.25 · λ / 131072) m: sign field set, phase_res 2.
+    let step = -0.5 * 1.25 * f64::from(6.328e-7f32) / 131072.0;
+    let nan = f64::NAN;
+    assert_heights(c, &[0.0, step, -131072.0 * step, nan, 100.0 * step, nan]);
+}
+
+#[test]
+fn al3d_padded_rows_and_invalid_pixels() {
+    let tag = |k: &str, v: &str| -> Vec<u8> {
+        let mut t = vec![0u8; 52];
+        t[..k.len()].copy_from_slice(k.as_bytes());
+        t[20..20 + v.len()].copy_from_slice(v.as_bytes());
+        t[50..].copy_from_slice(b"\r\n");
+        t
+    };
+    // 17 bytes of magic, 2 + 7 tags, a 256-byte comment: the depth image at 17 + 9·52 + 256.
+    let offset = (17 + 9 * 52 + 256).to_string();
+    let mut f = b"AliconaImaging\0\r\n".to_vec();
+    for (k, v) in [
+        ("Version", "1"),
+        ("TagCount", "7"),
+        ("Cols", "3"),
+        ("Rows", "2"),
+        ("PixelSizeXMeter", "1e-06"),
+        ("PixelSizeYMeter", "2e-06"),
+        ("DepthImageOffset", offset.as_str()),
+        ("InvalidPixelValue", "3e+15"),
+        ("CreatingApplication", "test"),
+    ] {
+        f.extend(tag(k, v));
+    }
+    f.extend([0u8; 256]);
+    // Rows of 3 f32 (12 bytes) padded to 16 with a value that must not be read.
+    let rows = [[1.5f32, f32::NAN, 2.5, 99.0], [3e15, -4.0, 0.25, 99.0]];
+    f.extend(rows.iter().flatten().flat_map(|v| v.to_le_bytes()));
+    let r = al3d::read_al3d(&synthetic("al3d"), &f).unwrap();
+    let c = &r.channels[0];
+    assert_eq!((c.nx, c.ny, c.dx, c.dy), (3, 2, 1e-6, 2e-6));
+    let nan = f64::NAN;
+    assert_heights(c, &[1.5, nan, 2.5, nan, -4.0, 0.25]);
+}
+
+#[test]
+fn mi_sixteen_bit_buffers() {
+    let mut f = Vec::new();
+    for (k, v) in [
+        ("fileType", "Image"),
+        ("xPixels", "3"),
+        ("yPixels", "2"),
+        ("xLength", "3e-6"),
+        ("yLength", "4e-6"),
+        ("bufferLabel", "Topography"),
+        ("bufferRange", "1.5"),
+        ("bufferUnit", "nm"),
+        ("bufferLabel", "Amplitude"),
+        ("bufferRange", "2"),
+        ("bufferUnit", "V"),
+        ("data", "BINARY"),
+    ] {
+        f.extend(format!("{k:<14}{v}\r\n").bytes());
+    }
+    // Two buffers, stored rows [1 2 3] then [4 5 -32768]: the last stored row is the top line.
+    let counts: [i16; 12] = [1, 2, 3, 4, 5, -32768, 7, 8, 9, 10, 11, 12];
+    f.extend(counts.iter().flat_map(|c| c.to_le_bytes()));
+    let r = mi::read_mi(&synthetic("mi"), &f).unwrap();
+    let c = &r.channels[0];
+    assert_eq!((c.nx, c.ny, c.dx, c.dy), (3, 2, 1e-6, 2e-6));
+    assert!(c.is_height && !r.channels[1].is_height);
+    let s = 1.5 / 32768.0 * 1e-9;
+    assert_heights(c, &[4.0 * s, 5.0 * s, -1.5e-9, s, 2.0 * s, 3.0 * s]);
+    let v = 2.0 / 32768.0;
+    assert_heights(
+        &r.channels[1],
+        &[10.0 * v, 11.0 * v, 12.0 * v, 7.0 * v, 8.0 * v, 9.0 * v],
+    );
+}
+
+#[test]
+fn frt_multi_image_block_with_32_bit_counts() {
+    let block = |tag: u16, payload: Vec<u8>| -> Vec<u8> {
+        let mut b = tag.to_le_bytes().to_vec();
+        b.extend((payload.len() as u64).to_le_bytes());
+        b.extend(payload);
+        b
+    };
+    let f64s = |v: &[f64]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    let mut size = f64s(&[6e-6, 4e-6, 0.0, 0.0, 1.0]);
+    size.extend(0u32.to_le_bytes());
+    let mut scale = 0u32.to_le_bytes().to_vec();
+    scale.extend(2e-9f64.to_le_bytes());
+    // Buffer ids, then a 32-bit topography image and a 16-bit intensity image (type 0x0002).
+    let mut multi = vec![0u8; 8];
+    for v in [0x0004u32, 3, 2, 32] {
+        multi.extend(v.to_le_bytes());
+    }
+    multi.extend(
+        [10i32, 1, -7, 70000, 5, 6]
+            .iter()
+            .flat_map(|c| c.to_le_bytes()),
+    );
+    for v in [0x0002u32, 3, 2, 16] {
+        multi.extend(v.to_le_bytes());
+    }
+    multi.extend([0u8; 12]);
+    let mut f = b"FRTM_GLIDERV1.01".to_vec();
+    f.extend(3u16.to_le_bytes());
+    f.extend(block(0x67, size));
+    f.extend(block(0x6c, scale));
+    f.extend(block(0x7d, multi));
+    let r = frt::read_frt(&synthetic("frt"), &f).unwrap();
+    assert_eq!(r.channels.len(), 1, "the intensity image is not a height");
+    let c = &r.channels[0];
+    assert_eq!(c.name, "Topography (top sensor) 1");
+    assert_eq!((c.nx, c.ny, c.dx, c.dy), (3, 2, 2e-6, 2e-6));
+    // The first stored row is the bottom line; count 1 is not measured.
+    let s = 2e-9;
+    assert_heights(
+        c,
+        &[70000.0 * s, 5.0 * s, 6.0 * s, 10.0 * s, f64::NAN, -7.0 * s],
+    );
+}
