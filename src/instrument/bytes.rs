@@ -140,10 +140,17 @@ pub(crate) fn decode<const N: usize>(raw: &[u8], f: impl Fn([u8; N]) -> f64) -> 
         .collect()
 }
 
-/// A row-major `nx`-wide map with its rows in reverse order (for files that store the bottom
-/// line of the image first, or the top line last).
-pub(crate) fn flip_rows(z: &[f64], nx: usize) -> Vec<f64> {
-    z.chunks_exact(nx).rev().flatten().copied().collect()
+/// Like [`decode`] for a map of `nx`-value rows, with the rows in reverse order (for files
+/// that store the bottom line of the image first, or the top line last).
+pub(crate) fn decode_flipped<const N: usize>(
+    raw: &[u8],
+    nx: usize,
+    f: impl Fn([u8; N]) -> f64,
+) -> Vec<f64> {
+    raw.chunks_exact(nx * N)
+        .rev()
+        .flat_map(|row| decode(row, &f))
+        .collect()
 }
 
 /// Latin-1 text (every byte one character), as instrument headers are written.

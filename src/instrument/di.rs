@@ -16,7 +16,7 @@
 //! channel's unit. A channel whose unit is a length (the soft scale's numerator) holds heights;
 //! other channels (phase, amplitude) keep their values in their own unit.
 
-use super::bytes::{Bytes, flip_rows, latin1, length_unit};
+use super::bytes::{Bytes, decode_flipped, latin1, length_unit};
 use super::{Channel, Reading};
 use crate::Error;
 use std::path::Path;
@@ -426,9 +426,9 @@ fn channel(b: &Bytes, path: &Path, image: &Section, g: &Globals) -> Result<Chann
     let raw = b.grid(offset, nx, ny, elsize, "image data")?;
     let (per_count, unit_in_file, is_height) = z_scale(path, image, g, bpp)?;
     let z: Vec<f64> = if elsize == 2 {
-        super::bytes::decode(raw, |a| f64::from(i16::from_le_bytes(a)) * per_count)
+        decode_flipped(raw, nx, |a| f64::from(i16::from_le_bytes(a)) * per_count)
     } else {
-        super::bytes::decode(raw, |a| f64::from(i32::from_le_bytes(a)) * per_count)
+        decode_flipped(raw, nx, |a| f64::from(i32::from_le_bytes(a)) * per_count)
     };
     Ok(Channel {
         name: image_name(image),
@@ -436,7 +436,7 @@ fn channel(b: &Bytes, path: &Path, image: &Section, g: &Globals) -> Result<Chann
         ny,
         dx,
         dy,
-        z: flip_rows(&z, nx),
+        z,
         unit_in_file,
         is_height,
     })

@@ -13,7 +13,7 @@
 //!
 //! The count 1 marks non-measured points. The pixel size is the scan size over the points.
 
-use super::bytes::{Bytes, decode, flip_rows, pixel_size};
+use super::bytes::{Bytes, decode_flipped, pixel_size};
 use super::{Channel, Reading};
 use crate::Error;
 use std::path::Path;
@@ -102,16 +102,12 @@ fn heights(
              its block (byte {end})"
         )));
     }
-    let z = if elsize == 2 {
-        decode(raw, |a| f64::from(u16::from_le_bytes(a)))
+    let height = |c: f64| if c == UNDEFINED { f64::NAN } else { c * scale };
+    Ok(if elsize == 2 {
+        decode_flipped(raw, nx, |a| height(f64::from(u16::from_le_bytes(a))))
     } else {
-        decode(raw, |a| f64::from(i32::from_le_bytes(a)))
-    };
-    let z: Vec<f64> = z
-        .into_iter()
-        .map(|c| if c == UNDEFINED { f64::NAN } else { c * scale })
-        .collect();
-    Ok(flip_rows(&z, nx))
+        decode_flipped(raw, nx, |a| height(f64::from(i32::from_le_bytes(a))))
+    })
 }
 
 /// Read an FRT `.frt` file: its topography (or the height images of its multi-image block),

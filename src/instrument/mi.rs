@@ -9,7 +9,7 @@
 //! Values: count · `bufferRange` / 2¹⁵ (i16) or / 2³¹ (i32), in `bufferUnit`; a channel whose
 //! unit is a length holds heights. `xLength` and `yLength` are the scan size in m.
 
-use super::bytes::{Bytes, decode, flip_rows, length_unit};
+use super::bytes::{Bytes, decode_flipped, length_unit};
 use super::{Channel, Reading};
 use crate::Error;
 use std::path::Path;
@@ -167,9 +167,9 @@ pub fn read_mi(path: &Path, bytes: &[u8]) -> Result<Reading, Error> {
         let to_m = length_unit(&unit);
         let per_count = range / full_scale * to_m.unwrap_or(1.0);
         let z = if elsize == 2 {
-            decode(raw, |a| f64::from(i16::from_le_bytes(a)) * per_count)
+            decode_flipped(raw, nx, |a| f64::from(i16::from_le_bytes(a)) * per_count)
         } else {
-            decode(raw, |a| f64::from(i32::from_le_bytes(a)) * per_count)
+            decode_flipped(raw, nx, |a| f64::from(i32::from_le_bytes(a)) * per_count)
         };
         channels.push(Channel {
             name: label.0.clone(),
@@ -177,7 +177,7 @@ pub fn read_mi(path: &Path, bytes: &[u8]) -> Result<Reading, Error> {
             ny,
             dx,
             dy,
-            z: flip_rows(&z, nx),
+            z,
             unit_in_file: unit,
             is_height: to_m.is_some(),
         });
