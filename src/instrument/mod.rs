@@ -12,11 +12,19 @@ use std::path::Path;
 
 use crate::Error;
 
+pub mod al3d;
+mod bounded;
 mod bytes;
 mod dektak;
+pub mod di;
+pub mod frt;
 mod gwy;
 mod gwyddion_txt;
+pub mod metropro;
+pub mod mi;
 mod mitutoyo;
+pub mod opd;
+pub mod plu;
 mod sdf;
 mod sur;
 mod x3p;
@@ -57,6 +65,48 @@ const FORMATS: &[Format] = &[
         sniff: gwy::sniff,
         extensions: &["gwy"],
         read: gwy::read,
+    },
+    Format {
+        name: "metropro",
+        sniff: metropro::is_metropro,
+        extensions: &["dat"],
+        read: metropro::read_metropro,
+    },
+    Format {
+        name: "opd",
+        sniff: opd::is_opd,
+        extensions: &["opd"],
+        read: opd::read_opd,
+    },
+    Format {
+        name: "plu",
+        sniff: plu::is_plu,
+        extensions: &["plu"],
+        read: plu::read_plu,
+    },
+    Format {
+        name: "di",
+        sniff: di::is_di,
+        extensions: &["di"],
+        read: di::read_di,
+    },
+    Format {
+        name: "mi",
+        sniff: mi::is_mi,
+        extensions: &["mi"],
+        read: mi::read_mi,
+    },
+    Format {
+        name: "al3d",
+        sniff: al3d::is_al3d,
+        extensions: &["al3d"],
+        read: al3d::read_al3d,
+    },
+    Format {
+        name: "frt",
+        sniff: frt::is_frt,
+        extensions: &["frt"],
+        read: frt::read_frt,
     },
     Format {
         name: "gwyddion-txt",

@@ -14,6 +14,7 @@ mod fuzz;
 mod golden;
 mod hostile_readers;
 mod instrument;
+mod instrument_bin;
 mod interface_ref;
 mod kernel_table;
 mod layer;
