@@ -97,6 +97,7 @@ pub struct Bilayer {
 /// Above this q·d, e^{−qd} underflows and the bulk limits are exact in f64.
 const QD_BULK: f64 = 700.0;
 
+pub mod stack;
 mod table;
 pub use table::{KernelTable, Nodes, Squared, X_FAR};
 
