@@ -102,6 +102,7 @@ const QD_BULK: f64 = 700.0;
 /// and far below e^{745} for both) are below half the smallest subnormal: exactly 0 in f64.
 const QD_ZERO: f64 = 1490.0;
 
+pub mod stack;
 mod table;
 pub use table::{KernelTable, Nodes, Squared, X_FAR};
 

@@ -25,6 +25,7 @@ mod psd_moments;
 mod psd_read;
 mod report_browser;
 mod schema;
+mod stack;
 mod topography;
 mod validity;
 mod verify_check;
