@@ -98,6 +98,7 @@ pub struct Bilayer {
 const QD_BULK: f64 = 700.0;
 
 mod table;
+pub mod tangential;
 pub use table::{KernelTable, Nodes, Squared, X_FAR};
 
 /// 1/(2k+3)! for k = 0..14: Taylor coefficients of (sinh y − y)/y³ in y².
