@@ -18,6 +18,7 @@ mod layer;
 mod psd_convert;
 mod psd_moments;
 mod psd_read;
+mod tail;
 mod tangential;
 mod topography;
 mod validity;
