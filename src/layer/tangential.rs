@@ -38,12 +38,12 @@
 //! x = 1e−8, and in c the constant terms cancel to O(r) out of O(r²); the forms above have no such
 //! hidden cancellation: F, h and every term of D but one (bounded as in [`crate::layer`]) are
 //! sums of non-negative terms, and 2x − (1 − t) = H + x(1 − t) is written as such. G changes sign
-//! (once, at x = 1 for identical materials, g_t = (1 − x)e^{−x}): its positive and negative parts
-//! are each of the size of g_t's scale (1 + κ0)e^{−x}(1 + t)/D ≤ 12, so near the zero g_t is
-//! accurate in absolute terms, to a few ulp of that scale. c changes sign between material pairs
+//! (once, at x = 1 for identical materials, g_t = (1 − x)e^{−x}): near its zero its two parts are
+//! equal, each (1 + κ0)e^{−x} 2(1−ν0)(1 + t)/D, so g_t is accurate there in absolute terms, to a
+//! few ulp of that size (measured: 5e−16 e^{−qd}). c changes sign between material pairs
 //! (for two incompressible materials c = 4x²t(1 − r²)/D, positive for a soft film) and is
 //! accurate to rounding of its largest term. Only decaying exponentials appear; beyond
-//! x ≈ 745 e^{−x} underflows and g_t = f_t = h = 0, c = −a0/(1 + a0) exactly.
+//! x ≈ 745 e^{−x} underflows and g_t = f_t = h = 0, c = −a0/(1 + a0) to rounding.
 //!
 //! Limits (tested): identical materials g_t = (1 − x)e^{−x}, f_t = x e^{−x}, h = e^{−x},
 //! c = −(1−2ν)/(2(1−ν)) (zero for an incompressible half-space); as x → 0 every pair gives
