@@ -29,6 +29,7 @@ pub mod report;
 pub mod scene;
 mod simd;
 pub mod special;
+pub mod tail;
 pub mod textio;
 pub mod tomlin;
 pub mod topography;

@@ -104,6 +104,7 @@ const QD_ZERO: f64 = 1490.0;
 
 pub mod stack;
 mod table;
+pub mod tangential;
 pub use table::{KernelTable, Nodes, Squared, X_FAR};
 
 /// 1/(2k+3)! for k = 0..14: Taylor coefficients of (sinh y − y)/y³ in y².

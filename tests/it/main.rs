@@ -26,6 +26,8 @@ mod psd_read;
 mod report_browser;
 mod schema;
 mod stack;
+mod tail;
+mod tangential;
 mod topography;
 mod validity;
 mod verify_check;
