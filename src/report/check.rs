@@ -343,6 +343,8 @@ pub fn json(scene: &Scene, outcome: &Outcome) -> Value {
     let ev = &outcome.evaluation;
     let c = &ev.contact;
     let mut m = Map::new();
+    m.insert("schema_version".into(), json!(super::SCHEMA_VERSION));
+    m.insert("coatcheck_version".into(), json!(env!("CARGO_PKG_VERSION")));
     m.insert(
         "verdict".into(),
         json!(if outcome.pass { "pass" } else { "fail" }),
@@ -384,7 +386,9 @@ pub fn json(scene: &Scene, outcome: &Outcome) -> Value {
                 "name": ch.kind.name(),
                 "value": ch.value.value,
                 "value_err": ch.value.err,
+                "unit": if ch.kind == CheckKind::MinThickness { "m" } else { "Pa" },
                 "limit": ch.limit,
+                "utilisation": ch.margin.map(|m| 1.0 - m),
                 "margin": ch.margin,
                 "pass": ch.pass,
             })

@@ -18,6 +18,12 @@ pub use check::{csv, human, json, scene};
 pub use sweep::{SWEEP, sweep};
 pub use write::{is_broken_pipe, stdout, write_file, write_with};
 
+/// Version of the JSON documents' shape (`schema_version`; the schemas in `src/report/schema/`).
+pub const SCHEMA_VERSION: u32 = 1;
+
+/// The JSON Schema of `coatcheck check --format json` for one scene.
+pub const CHECK_SCHEMA: &str = include_str!("schema/check.schema.json");
+
 /// Output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {

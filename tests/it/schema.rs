@@ -133,3 +133,32 @@ fn the_validator_accepts_and_rejects_what_it_should() {
         assert!(e.iter().any(|m| m.contains(why)), "{bad}: {e:?}");
     }
 }
+
+/// `check --format json` of every kind of scene (model, measured PSD, failing, several
+/// roughness files, `--verify`, flags only, one check) against the shipped schema.
+#[test]
+fn check_json_follows_its_schema() {
+    let schema: Value = serde_json::from_str(coatcheck::report::CHECK_SCHEMA).unwrap();
+    for args in [
+        &["check", "examples/paper-rubber-on-steel.toml"][..],
+        &["check", "examples/measured-rolloff.toml"],
+        &["check", "examples/waviness-thin-film.toml"],
+        &["check", "examples/specs/lining-two-scans.toml"],
+        &["check", "examples/height-map-film.toml", "--verify"],
+        &[
+            "check",
+            "examples/paper-rubber-on-steel.toml",
+            "--checks",
+            "bond-shear",
+        ],
+        &["check", "examples/specs/paper-film-too-thin.toml"],
+    ] {
+        let mut argv = args.to_vec();
+        argv.extend(["--format", "json"]);
+        let o = crate::common::run(&argv);
+        assert!(o.status.code().is_some_and(|c| c < 2), "{argv:?}: {o:?}");
+        let v = crate::common::json(&o);
+        let e = errors(&schema, &v);
+        assert!(e.is_empty(), "{argv:?}:\n{}", e.join("\n"));
+    }
+}
