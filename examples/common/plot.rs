@@ -2,8 +2,8 @@
 //! `coatcheck::figures` at full resolution, write `<out>/figNN.csv` (series, x, y, y_err in
 //! the axes' display units, named in the header) and `<out>/figNN.svg` (plotters, SVG backend:
 //! log axes where the figure's are, axis titles with units, a legend). The output directory is
-//! the first argument (default `target/figures`); each file is written to a temporary file in
-//! the same directory and renamed into place, so no half-written file is ever left.
+//! the first argument (default `target/figures`); each file goes through the library's one
+//! writer (`coatcheck::report::write_file`), so no half-written file is ever left.
 
 use coatcheck::figures::Figure;
 use coatcheck::report::plot::{Extras, RGBColor};
@@ -54,23 +54,9 @@ pub fn write(
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let csv = dir.join(format!("{}.csv", fig.name));
     let svg = dir.join(format!("{}.svg", fig.name));
-    write_atomically(&csv, csv_text(fig)?.as_bytes())?;
-    write_atomically(&svg, svg_text(fig, colors, legend)?.as_bytes())?;
+    coatcheck::report::write_file(&csv, &csv_text(fig)?)?;
+    coatcheck::report::write_file(&svg, &svg_text(fig, colors, legend)?)?;
     Ok([csv, svg])
-}
-
-/// Write `bytes` to a temporary file next to `path`, then rename it over `path`.
-fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Box<dyn Error>> {
-    let name = path.file_name().ok_or("output path has no file name")?;
-    let tmp = path.with_file_name(format!(".{}.tmp", name.to_string_lossy()));
-    let written = std::fs::write(&tmp, bytes)
-        .map_err(|e| format!("{}: {e}", tmp.display()))
-        .and_then(|()| std::fs::rename(&tmp, path).map_err(|e| format!("{}: {e}", path.display())));
-    if written.is_err() {
-        // Best effort: a failed write must not leave a partial temporary file behind.
-        let _ = std::fs::remove_file(&tmp);
-    }
-    Ok(written?)
 }
 
 /// CSV in display units: `series,<x title>,<y title>,<y title> error`.
