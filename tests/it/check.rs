@@ -11,7 +11,7 @@ use coatcheck::psd::Spectrum;
 use coatcheck::scene::Scene;
 use std::path::PathBuf;
 
-fn paper_spectrum() -> Spectrum {
+pub(crate) fn paper_spectrum() -> Spectrum {
     Spectrum::self_affine(1.0, 1e5, 1e8, None)
         .unwrap()
         .scaled_to_rms_slope(1.0)
@@ -26,7 +26,7 @@ fn checks(bond_shear: bool, substrate_yield: bool) -> Checks {
     }
 }
 
-fn paper_design(checks: Checks, bond: f64, yield_strength: f64) -> Design {
+pub(crate) fn paper_design(checks: Checks, bond: f64, yield_strength: f64) -> Design {
     Design {
         layers: Bilayer::new(
             Elastic::new(1e6, 0.5).unwrap(),

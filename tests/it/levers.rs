@@ -2,31 +2,20 @@
 //! design pass, and a step past it fails again, re-judged by a fresh checker (the paper's
 //! spectrum and materials, at thicknesses where one check or both fail).
 
+use crate::check::{paper_design, paper_spectrum};
 use coatcheck::check::levers::{Lever, REL_TOL, SPAN, levers};
-use coatcheck::check::{Checker, Design};
-use coatcheck::layer::{Bilayer, Elastic};
+use coatcheck::check::{Checker, Checks, Design};
 use coatcheck::prec::Settings;
 use coatcheck::psd::{Spectrum, Tabulated};
 use coatcheck::report::html::lever_text;
 
 fn spectrum() -> Spectrum {
-    Spectrum::self_affine(1.0, 1e5, 1e8, None)
-        .unwrap()
-        .scaled_to_rms_slope(1.0)
-        .unwrap()
+    paper_spectrum()
 }
 
+/// The paper's rubber on steel with every check, ε = 1e-6 and no safety factor.
 fn design(bond: f64, yield_strength: f64) -> Design {
-    Design {
-        layers: Bilayer::new(
-            Elastic::new(1e6, 0.5).unwrap(),
-            Elastic::new(1e11, 0.5).unwrap(),
-        ),
-        pressure: 1e5,
-        yield_strength: Some(yield_strength),
-        bond_strength: bond,
-        criteria: Default::default(),
-    }
+    paper_design(Checks::all(), bond, yield_strength)
 }
 
 fn passes(s: &Spectrum, d: &Design, thickness: f64) -> bool {
