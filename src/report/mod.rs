@@ -9,6 +9,7 @@ pub mod batch;
 pub mod check;
 pub mod html;
 pub mod junit;
+pub mod materials;
 pub mod parquet;
 pub mod plot;
 pub mod sweep;

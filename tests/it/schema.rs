@@ -162,3 +162,42 @@ fn check_json_follows_its_schema() {
         assert!(e.is_empty(), "{argv:?}:\n{}", e.join("\n"));
     }
 }
+
+/// `materials --format json`: every bundled file is an entry with its source, in SI, and the
+/// numbers are the library's own.
+#[test]
+fn materials_json_lists_every_file_with_its_source() {
+    let o = crate::common::run(&["materials", "--format", "json"]);
+    assert_eq!(o.status.code(), Some(0));
+    let v = crate::common::json(&o);
+    assert_eq!(v["schema_version"], 1);
+    let (mats, bonds) = (
+        v["materials"].as_array().unwrap(),
+        v["bonds"].as_array().unwrap(),
+    );
+    let files = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/materials"))
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "toml")
+        })
+        .count();
+    assert_eq!(mats.len() + bonds.len(), files);
+    let lib = coatcheck::material::Library::builtin().unwrap();
+    for m in mats {
+        let name = m["name"].as_str().unwrap();
+        let want = lib.material(name).unwrap();
+        assert_eq!(m["youngs_modulus_pa"].as_f64(), Some(want.elastic.youngs));
+        assert_eq!(m["poisson_ratio"].as_f64(), Some(want.elastic.poisson));
+        assert_eq!(m["yield_strength_pa"].as_f64(), want.yield_strength);
+        assert!(!m["source"].as_str().unwrap().is_empty(), "{name}");
+    }
+    for b in bonds {
+        let want = lib.bond(b["name"].as_str().unwrap()).unwrap();
+        assert_eq!(b["shear_strength_pa"].as_f64(), Some(want.shear_strength));
+        assert!(!b["source"].as_str().unwrap().is_empty());
+    }
+}
