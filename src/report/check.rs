@@ -6,7 +6,7 @@
 //! `checks`, each numeric result with a sibling `<key>_err` (its numerical error estimate), plus
 //! the inputs and warnings.
 
-use super::{Format, batch, mpa, sig, table, um, verify};
+use super::{Format, batch, modulus, mpa, sig, table, um, verify};
 use crate::check::{CheckKind, CheckResult, Outcome};
 use crate::error::Error;
 use crate::pipeline::Judged;
@@ -76,9 +76,9 @@ pub(crate) fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
     rows.push((
         "film".into(),
         format!(
-            "{}: E = {} MPa, nu = {}",
+            "{}: E = {}, nu = {}",
             f.name,
-            mpa(f.elastic.youngs),
+            modulus(f.elastic.youngs),
             f.elastic.poisson
         ),
     ));
@@ -93,9 +93,9 @@ pub(crate) fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
     rows.push((
         "substrate".into(),
         format!(
-            "{}: E = {} MPa, nu = {}{y}",
+            "{}: E = {}, nu = {}{y}",
             s.name,
-            mpa(s.elastic.youngs),
+            modulus(s.elastic.youngs),
             s.elastic.poisson
         ),
     ));

@@ -51,6 +51,19 @@ pub fn sig(x: f64, digits: usize) -> String {
     }
 }
 
+/// A Young's modulus in the unit engineers quote it in: GPa from 1 GPa, else MPa from 1 MPa,
+/// else kPa ("200.0 GPa", "1.000 MPa").
+fn modulus(pa: f64) -> String {
+    let (scale, unit) = if pa >= 1e9 {
+        (1e9, "GPa")
+    } else if pa >= 1e6 {
+        (1e6, "MPa")
+    } else {
+        (1e3, "kPa")
+    };
+    format!("{} {unit}", sig(pa / scale, 4))
+}
+
 fn mpa(pa: f64) -> String {
     sig(pa * 1e-6, 4)
 }
@@ -69,6 +82,15 @@ fn table(header: &[&str]) -> Table {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn moduli_in_engineering_units() {
+        assert_eq!(modulus(200e9), "200.0 GPa");
+        assert_eq!(modulus(1e11), "100.0 GPa");
+        assert_eq!(modulus(1e6), "1.000 MPa");
+        assert_eq!(modulus(3e9), "3.000 GPa");
+        assert_eq!(modulus(5e5), "500.0 kPa");
+    }
 
     #[test]
     fn significant_digits() {
