@@ -161,13 +161,18 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
         p0,
         bond,
     };
+    let table = verify_table(&inputs, &c);
     report::stdout(&match a.format {
-        FormatArg::Table => verify_table(&inputs, &c),
-        FormatArg::Json => format!(
-            "{}\n",
-            serde_json::to_string_pretty(&verify_json(&inputs, &c))
-                .expect("a JSON value serialises")
-        ),
+        FormatArg::Table => table,
+        FormatArg::Json => {
+            // JSON shows NaN as null: the table of the same numbers is checked instead.
+            report::finite_only(&table)?;
+            format!(
+                "{}\n",
+                serde_json::to_string_pretty(&verify_json(&inputs, &c))
+                    .expect("a JSON value serialises")
+            )
+        }
     })?;
     Ok(if c.above_bond.is_some_and(|f| f > 0.0) {
         1
