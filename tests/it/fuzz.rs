@@ -1,7 +1,8 @@
 //! Hardened inputs (issue 7): property-based fuzzing of the PSD/CSV reader, the unit parser, the
-//! scene reader and the instrument readers (truncated and corrupted sample files). Every input either reads into valid SI data or is rejected with an
-//! `Error::Input` naming the file and a line of it (or, for a key missing from a scene, the file
-//! and the key); nothing panics, nothing hangs, and no NaN or infinity reaches a verdict.
+//! scene reader and the instrument readers (truncated and corrupted sample files). Every input
+//! either reads into valid SI data or is rejected with an `Error::Input` naming the file and a
+//! line of it (or, for a key missing from a scene, the file and the key; for an instrument file,
+//! the file); nothing panics, nothing hangs, and no NaN or infinity reaches a verdict.
 //!
 //! Inputs are generated from the grammar the readers accept (numbers of every shape, units,
 //! separators, headers, comments, BOM, CRLF) mixed with arbitrary text, so that most cases get
