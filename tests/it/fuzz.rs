@@ -720,3 +720,29 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(config(32))]
+
+    /// A truncated or corrupted height map (the bundled example's CSV) reads or is refused
+    /// naming the file; never a panic.
+    #[test]
+    fn height_map_reader_reads_or_names_the_file(d in damage()) {
+        static MAP: OnceLock<Vec<u8>> = OnceLock::new();
+        let bytes = MAP.get_or_init(|| {
+            std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/data/height-map.csv"))
+                .unwrap()
+        });
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("map.csv");
+        std::fs::write(&path, damaged(bytes, &d)).unwrap();
+        let opts = coatcheck::topography::io::MapOptions::default();
+        match coatcheck::topography::io::read_height_map(&path, &opts) {
+            Ok(map) => prop_assert!(map.z.iter().all(|z| z.is_finite())),
+            Err(e) => {
+                let msg = e.to_string();
+                prop_assert!(msg.contains("map.csv"), "{msg}");
+            }
+        }
+    }
+}
