@@ -17,7 +17,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// The scene files of a batch: each argument is a scene file or a directory, whose `*.toml`
-/// files are taken in name order (not recursing). A directory without scenes is an error.
+/// entries are taken in name order (not recursing). Every `*.toml` entry but a directory is a
+/// scene: one that cannot be read (a dangling symbolic link, no permission) is then that
+/// scene's error row rather than silently left out. A directory without scenes is an error.
 pub fn scene_files(args: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
     let mut files = Vec::new();
     for arg in args {
@@ -34,7 +36,7 @@ pub fn scene_files(args: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
             .map(|e| e.map(|e| e.path()).map_err(io))
             .collect::<Result<Vec<_>, _>>()?
             .into_iter()
-            .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "toml"))
+            .filter(|p| !p.is_dir() && p.extension().is_some_and(|x| x == "toml"))
             .collect();
         if found.is_empty() {
             return Err(Error::Value {

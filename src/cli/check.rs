@@ -7,8 +7,7 @@ use coatcheck::check::log_space;
 use coatcheck::material::Library;
 use coatcheck::pipeline;
 use coatcheck::report::{self, Format};
-use coatcheck::scene::Scene;
-use coatcheck::units::{Dim, parse_quantity};
+use coatcheck::scene::{Key, Scene};
 use std::path::PathBuf;
 
 pub use super::check_args::CheckArgs;
@@ -25,17 +24,8 @@ fn parse_sweep(text: &str) -> Result<(f64, f64, usize), Error> {
     let [a, b, n] = parts[..] else {
         return Err(bad("expected three fields"));
     };
-    let len = |s: &str| {
-        parse_quantity(s, Dim::Length(1))
-            .map_err(|e| bad(&e.to_string()))
-            .and_then(|x| {
-                if x.is_finite() && x > 0.0 {
-                    Ok(x)
-                } else {
-                    Err(bad("thicknesses must be > 0"))
-                }
-            })
-    };
+    // Each end within film.thickness's range, as a scene's thickness.
+    let len = |s: &str| Key::Thickness.parse_flag("--sweep-thickness", s);
     let n: usize = n
         .trim()
         .parse()

@@ -42,17 +42,25 @@ fn elastic(flag: &'static str, text: &str) -> Result<Elastic, Error> {
     Elastic::new(e, nu)
 }
 
-/// Parse `a,b,c` or `from:to:n` (n log-spaced points, n >= 2).
+/// The largest q·d: the kernels are exact to rounding up to it (S → 1, f and g decay as
+/// e^(−qd) and are far below the smallest normal number beyond a few hundred).
+const QD_MAX: f64 = 1e6;
+
+/// The most points: a million rows of table, CSV or JSON (some 100 MB), computed in seconds.
+const MAX_POINTS: usize = 1_000_000;
+
+/// Parse `a,b,c` or `from:to:n` (n log-spaced points, 2 <= n <= 1e6), each q·d within
+/// [0, 1e6].
 pub fn parse_grid(flag: &'static str, text: &str) -> Result<Vec<f64>, Error> {
     let num = |s: &str| -> Result<f64, Error> {
         let v: f64 = s
             .trim()
             .parse()
             .map_err(|_| Error::invalid(flag, s, "a number"))?;
-        if v.is_finite() && v >= 0.0 {
+        if (0.0..=QD_MAX).contains(&v) {
             Ok(v)
         } else {
-            Err(Error::invalid(flag, s, "a finite value >= 0"))
+            Err(Error::invalid(flag, s, "a value from 0 to 1e6"))
         }
     };
     let parts: Vec<&str> = text.split(':').collect();
@@ -63,18 +71,19 @@ pub fn parse_grid(flag: &'static str, text: &str) -> Result<Vec<f64>, Error> {
                 .trim()
                 .parse()
                 .map_err(|_| Error::invalid(flag, n, "a whole number of points >= 2"))?;
-            if n < 2 || a <= 0.0 || b <= a {
+            if !(2..=MAX_POINTS).contains(&n) || a <= 0.0 || b <= a {
                 return Err(Error::invalid(
                     flag,
                     text,
-                    "from:to:n with 0 < from < to and n >= 2",
+                    "from:to:n with 0 < from < to and 2 <= n <= 1000000",
                 ));
             }
             Ok((0..n)
                 .map(|i| a * (b / a).powf(i as f64 / (n - 1) as f64))
                 .collect())
         }
-        [list] => list.split(',').map(num).collect(),
+        [list] if list.split(',').count() <= MAX_POINTS => list.split(',').map(num).collect(),
+        [_] => Err(Error::invalid(flag, text, "at most 1000000 values")),
         _ => Err(Error::invalid(
             flag,
             text,

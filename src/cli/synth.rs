@@ -2,6 +2,7 @@
 //! of its rows as line scans.
 
 use coatcheck::Error;
+use coatcheck::scene::Key;
 use coatcheck::topography::Profile;
 use coatcheck::topography::io::{write_height_map, write_profile};
 use coatcheck::topography::synth::{Amplitude, SynthSpec, self_affine_map};
@@ -12,7 +13,7 @@ use std::path::PathBuf;
 /// C = C0 below q0, C0 (q/q0)^(−2(1+H)) up to q1, 0 above.
 #[derive(Debug, clap::Args)]
 pub struct SynthArgs {
-    /// Pixels per side.
+    /// Pixels per side, 4 to 8192.
     #[arg(long, default_value_t = 256)]
     pub n: usize,
     /// Pixel size (e.g. 1um).
@@ -30,13 +31,14 @@ pub struct SynthArgs {
     /// rms height (e.g. 1um); or give --rms-slope.
     #[arg(
         long,
+        allow_hyphen_values = true,
         conflicts_with = "rms_slope",
         required_unless_present = "rms_slope"
     )]
     pub rms_height: Option<String>,
     /// rms slope.
-    #[arg(long)]
-    pub rms_slope: Option<f64>,
+    #[arg(long, allow_hyphen_values = true)]
+    pub rms_slope: Option<String>,
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Write K rows, spread evenly over the map, as line scans (`x, z1..zK`) instead of the map.
@@ -53,14 +55,9 @@ fn quantity(flag: &'static str, s: &str, dim: Dim, expected: &'static str) -> Re
 
 /// Run `coatcheck synth`; returns the exit code (0) or an error (exit code 2).
 pub fn run(a: SynthArgs) -> Result<i32, Error> {
-    let amplitude = match (&a.rms_height, a.rms_slope) {
-        (Some(h), _) => Amplitude::RmsHeight(quantity(
-            "--rms-height",
-            h,
-            Dim::Length(1),
-            "a length such as 1um",
-        )?),
-        (None, Some(x)) => Amplitude::RmsSlope(x),
+    let amplitude = match (&a.rms_height, &a.rms_slope) {
+        (Some(h), _) => Amplitude::RmsHeight(Key::RmsHeight.parse_flag("--rms-height", h)?),
+        (None, Some(x)) => Amplitude::RmsSlope(Key::RmsSlope.parse_flag("--rms-slope", x)?),
         (None, None) => {
             return Err(Error::invalid(
                 "amplitude",
@@ -78,18 +75,8 @@ pub fn run(a: SynthArgs) -> Result<i32, Error> {
             "a length such as 1um",
         )?,
         hurst: a.hurst,
-        q0: quantity(
-            "--q0",
-            &a.q0,
-            Dim::Length(-1),
-            "a wavenumber such as 1e5 1/m",
-        )?,
-        q1: quantity(
-            "--q1",
-            &a.q1,
-            Dim::Length(-1),
-            "a wavenumber such as 1e7 1/m",
-        )?,
+        q0: Key::Q0.parse_flag("--q0", &a.q0)?,
+        q1: Key::Q1.parse_flag("--q1", &a.q1)?,
         amplitude,
         seed: a.seed,
     };

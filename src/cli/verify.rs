@@ -14,6 +14,7 @@ use coatcheck::report::{
     self,
     verify::{VerifyInputs, verify_json, verify_table, write_fields},
 };
+use coatcheck::scene::Key;
 use coatcheck::topography::io::{MapOptions, read_height_map};
 use coatcheck::units::{Dim, parse_quantity};
 use coatcheck::verify::compare;
@@ -58,66 +59,75 @@ pub struct VerifyArgs {
     #[arg(long)]
     pub height_unit: Option<String>,
     /// Interface bond strength in shear: reports the area fraction where |τ| exceeds it.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub bond_strength: Option<String>,
     /// Write the fields (x, y, height, pressure, gap, interface σ_n, τ_x, τ_y, |τ|) as CSV.
     #[arg(long)]
     pub fields: Option<PathBuf>,
     #[arg(long, value_enum, default_value = "table")]
     pub format: FormatArg,
-    /// Solver tolerance: rms gap in contact and largest penetration, relative to h_rms.
-    #[arg(long, default_value_t = BemSettings::default().gap_tol)]
+    /// Solver tolerance: rms gap in contact and largest penetration, relative to h_rms
+    /// (0 < gap-tol <= 1e-2).
+    #[arg(long, allow_hyphen_values = true, default_value_t = BemSettings::default().gap_tol)]
     pub gap_tol: f64,
-    /// Solver iteration limit.
+    /// Solver iteration limit (1 to 1000000).
     #[arg(long, default_value_t = BemSettings::default().max_iter)]
     pub max_iter: usize,
-    /// Relative tolerance of Persson's contact integrals (default 1e-8).
+    /// Relative tolerance of Persson's contact integrals (default 1e-8; 1e-13 to 1e-2).
     #[arg(long)]
     pub rtol: Option<String>,
 }
+
+/// The largest `--gap-tol`: the solver's gaps and penetrations are then within 1% of h_rms; a
+/// looser tolerance stops before the contact is resolved (at 1e10 it stops at once, with the
+/// whole map in contact).
+const GAP_TOL_MAX: f64 = 1e-2;
+
+/// The largest `--max-iter`: each iteration costs two FFTs of the map, so a million of them is
+/// hours on a large map; the default converges well within it.
+const MAX_ITER: usize = 1_000_000;
 
 fn quantity(flag: &'static str, s: &str, dim: Dim, expected: &'static str) -> Result<f64, Error> {
     parse_quantity(s, dim).map_err(|e| Error::invalid(flag, format!("'{s}' ({e})"), expected))
 }
 
-fn material(flag: &'static str, s: &str) -> Result<Elastic, Error> {
+/// `E,nu`: the modulus within the scene's range for `modulus`, the ratio checked by
+/// [`Elastic::new`].
+fn material(flag: &'static str, s: &str, modulus: Key) -> Result<Elastic, Error> {
     const EXPECTED: &str = "E,nu with E a pressure (e.g. 1MPa,0.5)";
     let (e, nu) = s
         .split_once(',')
         .ok_or_else(|| Error::invalid(flag, format!("'{s}'"), EXPECTED))?;
-    let e = quantity(flag, e, Dim::Pressure, EXPECTED)?;
+    let e = modulus.parse_flag(flag, e)?;
     let nu = quantity(flag, nu, Dim::Dimensionless, EXPECTED)?;
     Elastic::new(e, nu)
 }
 
 /// Run `coatcheck verify`; returns the exit code or an error (exit code 2).
 pub fn run(a: VerifyArgs) -> Result<i32, Error> {
-    let film = material("--film", &a.film)?;
-    let substrate = material("--substrate", &a.substrate)?;
-    let d = quantity(
-        "--thickness",
-        &a.thickness,
-        Dim::Length(1),
-        "a length (e.g. 50um)",
-    )?;
-    let p0 = quantity(
-        "--pressure",
-        &a.pressure,
-        Dim::Pressure,
-        "a pressure (e.g. 0.1MPa)",
-    )?;
+    let film = material("--film", &a.film, Key::FilmYoungsModulus)?;
+    let substrate = material("--substrate", &a.substrate, Key::SubstrateYoungsModulus)?;
+    let d = Key::Thickness.parse_flag("--thickness", &a.thickness)?;
+    let p0 = Key::Pressure.parse_flag("--pressure", &a.pressure)?;
     let bond = a
         .bond_strength
         .as_deref()
-        .map(|s| {
-            quantity(
-                "--bond-strength",
-                s,
-                Dim::Pressure,
-                "a pressure (e.g. 10MPa)",
-            )
-        })
+        .map(|s| Key::ShearStrength.parse_flag("--bond-strength", s))
         .transpose()?;
+    if !(a.gap_tol > 0.0 && a.gap_tol <= GAP_TOL_MAX) {
+        return Err(Error::invalid(
+            "--gap-tol",
+            a.gap_tol,
+            "0 < gap-tol <= 1e-2 (relative to h_rms)",
+        ));
+    }
+    if !(1..=MAX_ITER).contains(&a.max_iter) {
+        return Err(Error::invalid(
+            "--max-iter",
+            a.max_iter,
+            "1 <= max-iter <= 1000000",
+        ));
+    }
     let length = |flag, s: &Option<String>| {
         s.as_deref()
             .map(|s| quantity(flag, s, Dim::Length(1), "a length (e.g. 0.5um)"))
@@ -132,21 +142,7 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
     let rtol = a
         .rtol
         .as_deref()
-        .map(|s| {
-            quantity(
-                "--rtol",
-                s,
-                Dim::Dimensionless,
-                "a relative tolerance such as 1e-8",
-            )
-            .and_then(|r| {
-                if r > 0.0 && r < 1.0 {
-                    Ok(r)
-                } else {
-                    Err(Error::invalid("--rtol", s, "0 < rtol < 1"))
-                }
-            })
-        })
+        .map(|s| Key::Rtol.parse_flag("--rtol", s))
         .transpose()?
         .unwrap_or(coatcheck::prec::DEFAULT_RTOL);
     let map = read_height_map(&a.map, &opts)?;
@@ -165,13 +161,18 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
         p0,
         bond,
     };
+    let table = verify_table(&inputs, &c);
     report::stdout(&match a.format {
-        FormatArg::Table => verify_table(&inputs, &c),
-        FormatArg::Json => format!(
-            "{}\n",
-            serde_json::to_string_pretty(&verify_json(&inputs, &c))
-                .expect("a JSON value serialises")
-        ),
+        FormatArg::Table => table,
+        FormatArg::Json => {
+            // JSON shows NaN as null: the table of the same numbers is checked instead.
+            report::finite_only(&table)?;
+            format!(
+                "{}\n",
+                serde_json::to_string_pretty(&verify_json(&inputs, &c))
+                    .expect("a JSON value serialises")
+            )
+        }
     })?;
     Ok(if c.above_bond.is_some_and(|f| f > 0.0) {
         1

@@ -302,6 +302,8 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
             t
         }
         Format::Json => {
+            // JSON shows NaN as null: the table of the same numbers is checked instead.
+            super::finite_only(&human(scene, outcome))?;
             let mut v = json(scene, outcome);
             if several {
                 let worst = j.worst_file().map(|p| p.display().to_string());

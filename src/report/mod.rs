@@ -3,6 +3,7 @@
 //! comfy-table with MPa, µm and 4 significant digits ([`sig`]). Files and standard output are
 //! written by [`mod@write`], the one writer.
 
+use crate::error::Error;
 use comfy_table::{Table, presets::UTF8_FULL_CONDENSED};
 
 pub mod batch;
@@ -31,6 +32,45 @@ pub enum Format {
     Table,
     Json,
     Csv,
+}
+
+/// Refuse a report that shows a number that is not finite: no command prints NaN or inf. A
+/// table cell or CSV field that reads `NaN`, `inf` or `-inf` is a numerical failure naming its
+/// row (the row's first cell: the quantity, or the q or q·d of a data row) and its column.
+pub fn finite_only(text: &str) -> Result<(), Error> {
+    let cells = |line: &str| -> Vec<String> {
+        line.split(['│', '┆', '|', ','])
+            .map(|c| c.trim().to_string())
+            .filter(|c| !c.is_empty())
+            .collect()
+    };
+    let mut header: Vec<String> = Vec::new();
+    for line in text.lines() {
+        let row = cells(line);
+        if header.is_empty() && row.len() > 1 {
+            header = row.clone();
+        }
+        let bad = row.iter().position(|c| {
+            matches!(
+                c.to_ascii_lowercase().as_str(),
+                "nan" | "inf" | "-inf" | "+inf"
+            )
+        });
+        if let Some(i) = bad {
+            let column = header
+                .get(i)
+                .filter(|_| i > 0)
+                .map_or(String::new(), |h| format!(", column {h}"));
+            return Err(Error::Numerical {
+                what: "the report",
+                detail: format!(
+                    "{} is {}{column}; a result that is not finite is not printed",
+                    row[0], row[i]
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// `x` with `digits` significant digits: fixed notation for 1e-3 ≤ |x| < 1e6, else scientific.
@@ -90,6 +130,23 @@ mod tests {
         assert_eq!(modulus(1e6), "1.000 MPa");
         assert_eq!(modulus(3e9), "3.000 GPa");
         assert_eq!(modulus(5e5), "500.0 kPa");
+    }
+
+    #[test]
+    fn a_report_with_a_non_finite_number_is_refused_naming_it() {
+        let table = "┌──────┬─────┐\n│ quantity ┆ Persson ┆ err │\n│ A/A0 ┆ 0.5 ┆ NaN │\n";
+        let e = finite_only(table).unwrap_err().to_string();
+        assert!(e.contains("A/A0 is NaN, column err"), "{e}");
+        let csv = "qd,S,S_err\n1e0,0.5,1e-13\n1e3,inf,1e-13\n";
+        let e = finite_only(csv).unwrap_err().to_string();
+        assert!(e.contains("1e3 is inf, column S"), "{e}");
+        let e = finite_only("key,value\nsigma_max,-inf\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("sigma_max is -inf, column value"), "{e}");
+        // Words and numbers that merely contain the letters are fine.
+        let fine = "information, infinite film: 1e300 | infinity-norm ┆ nan-free ┆ 0\n";
+        assert!(finite_only(fine).is_ok());
     }
 
     #[test]

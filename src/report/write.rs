@@ -180,8 +180,10 @@ pub fn write_file(path: &Path, contents: &str) -> Result<(), Error> {
     write_with(path, |w| w.write_all(contents.as_bytes()))
 }
 
-/// Print `text` on standard output. A write error is an [`Error::Io`] on `<stdout>`.
+/// Print `text` on standard output, unless it shows a number that is not finite
+/// ([`super::finite_only`]). A write error is an [`Error::Io`] on `<stdout>`.
 pub fn stdout(text: &str) -> Result<(), Error> {
+    super::finite_only(text)?;
     let mut out = std::io::stdout().lock();
     out.write_all(text.as_bytes())
         .and_then(|()| out.flush())

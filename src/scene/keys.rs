@@ -7,7 +7,8 @@
 //! [`RawScene`] holds the values as written (file and flags), one slot per key, before
 //! validation.
 
-use crate::tomlin::Field;
+use crate::error::Error;
+use crate::tomlin::{Ctx, Field};
 use crate::units::Dim;
 use serde::Deserialize;
 use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, Visitor};
@@ -446,6 +447,29 @@ impl Key {
             Value::Quantity(_, range) => Some(range),
             _ => None,
         }
+    }
+
+    /// `f` read as the value of this quantity key: its dimension, > 0 where its range asks
+    /// for it, within its range; errors name the key at `f`'s line or flag.
+    pub fn quantity_of(self, f: &Field, ctx: Ctx<'_>) -> Result<f64, Error> {
+        let Value::Quantity(dim, range) = self.spec().value else {
+            unreachable!("{} is not a quantity", self.name());
+        };
+        let v = if range.positive() {
+            ctx.positive(f, self.name(), dim)?
+        } else {
+            ctx.quantity(f, self.name(), dim)?
+        };
+        match range.reject(v) {
+            Some(why) => Err(ctx.error(&f.origin, self.name(), why)),
+            None => Ok(v),
+        }
+    }
+
+    /// `text`, given to another command's `flag`, read as the value of this quantity key (as
+    /// [`Key::quantity_of`]): every command accepts the scene's ranges.
+    pub fn parse_flag(self, flag: &'static str, text: &str) -> Result<f64, Error> {
+        self.quantity_of(&Field::flag(flag, text), Ctx { file: None })
     }
 
     /// The TOML section and the field within it.

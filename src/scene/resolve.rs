@@ -3,7 +3,7 @@
 //! library, criteria and numerics. Errors name the key and its line (or flag).
 
 use super::Scene;
-use super::keys::{Choice, Key, RawScene, Value};
+use super::keys::{Choice, Key, RawScene};
 use super::roughness::resolve_roughness;
 use crate::check::{CheckKind, Checks, Criteria};
 use crate::error::Error;
@@ -41,18 +41,7 @@ impl Reader<'_> {
 
     /// `f` read as the value of quantity `key`.
     pub fn quantity_of(&self, key: Key, f: &Field) -> Result<f64, Error> {
-        let Value::Quantity(dim, range) = key.spec().value else {
-            unreachable!("{} is not a quantity", key.name());
-        };
-        let v = if range.positive() {
-            self.ctx.positive(f, key.name(), dim)?
-        } else {
-            self.ctx.quantity(f, key.name(), dim)?
-        };
-        match range.reject(v) {
-            Some(why) => Err(self.error(key, f, why)),
-            None => Ok(v),
-        }
+        key.quantity_of(f, self.ctx)
     }
 
     /// The text of `key`.
