@@ -87,10 +87,17 @@ impl Source<'_> {
     pub fn parse<T: serde::de::DeserializeOwned>(&self) -> Result<T, Error> {
         toml::from_str(self.text).map_err(|e| {
             let line = e.span().map(|s| self.line_of(s.start)).unwrap_or(1);
+            let mut msg = one_line(e.message());
+            // The TOML parser's "duplicate key" names no key: its span does.
+            if msg == "duplicate key"
+                && let Some(key) = e.span().and_then(|s| self.text.get(s))
+            {
+                msg = format!("duplicate key `{}`", one_line(key));
+            }
             Error::Input {
                 path: self.path.to_path_buf(),
                 line,
-                msg: one_line(e.message()),
+                msg,
             }
         })
     }

@@ -238,3 +238,17 @@ fn a_dangling_scene_link_in_a_batch_is_its_error_row() {
         "{out}"
     );
 }
+
+/// A key given twice in a scene table: the message names the key and its second line.
+#[test]
+fn a_duplicate_scene_key_is_named() {
+    let d = tempfile::tempdir().unwrap();
+    let scene = d.path().join("dup.toml");
+    std::fs::write(
+        &scene,
+        "[film]\nmaterial = \"natural-rubber\"\nmaterial = \"nbr\"\n",
+    )
+    .unwrap();
+    let o = run(&["check", scene.to_str().unwrap()]);
+    refused(&o, &["dup.toml:3:", "duplicate key `material`"]);
+}
