@@ -15,6 +15,7 @@ mod golden;
 mod hostile_readers;
 mod instrument;
 mod instrument_bin;
+mod instrument_cli;
 mod interface_ref;
 mod kernel_table;
 mod layer;
