@@ -8,7 +8,7 @@ use coatcheck::Error;
 use coatcheck::psd::abel::Conversion;
 use coatcheck::topography::io::HeightKind;
 use coatcheck::topography::spectrum::{Detrend, PsdOptions, TopographyPsd, Window};
-use coatcheck::topography::{HeightFileOptions, psd_of_file};
+use coatcheck::topography::{FileInfo, HeightFileOptions, psd_of_file};
 use coatcheck::units::{Dim, parse_quantity};
 use comfy_table::Table;
 use std::io::Write;
@@ -57,7 +57,8 @@ pub enum FormatArg {
 #[derive(Debug, clap::Args)]
 #[command(after_help = "Exit codes: 0 success, 2 bad input or a numerical failure.")]
 pub struct PsdArgs {
-    /// Line scans (`x,z…` columns, or `z…` with --dx) or a height map (CSV matrix).
+    /// An instrument file (x3p, sdf, sur, gwy, …), line scans (`x,z…` columns, or `z…` with
+    /// --dx) or a height map (CSV matrix).
     pub file: PathBuf,
     /// What the file holds.
     #[arg(long, value_enum, default_value = "auto")]
@@ -98,6 +99,10 @@ pub struct PsdArgs {
     /// Write the PSD as CSV here (atomically).
     #[arg(long, short)]
     pub output: Option<PathBuf>,
+    /// Instrument files: the channel to use, by name or 1-based number (default: the first
+    /// height channel).
+    #[arg(long)]
+    pub channel: Option<String>,
     /// What to print: summary table, CSV, or one JSON object.
     #[arg(long, value_enum, default_value = "table")]
     pub format: FormatArg,
@@ -153,8 +158,9 @@ pub fn run(a: PsdArgs) -> Result<i32, Error> {
         x_unit: a.x_unit.clone(),
         z_unit: a.z_unit.clone(),
         periodic,
+        channel: a.channel.clone(),
     };
-    let (kind, result) = psd_of_file(&a.file, &file, &opts)?;
+    let (info, result) = psd_of_file(&a.file, &file, &opts)?;
     let input = a.file.display().to_string();
     if let Some(out) = &a.output {
         coatcheck::report::write_with(out, |w| write_csv(w, &input, &result))?;
@@ -165,14 +171,14 @@ pub fn run(a: PsdArgs) -> Result<i32, Error> {
             writeln!(
                 stdout,
                 "{}",
-                summary_table(&input, kind, &result, a.output.as_ref())
+                summary_table(&input, &info, &result, a.output.as_ref())
             )
         }
         FormatArg::Csv => match &a.output {
             None => write_csv(&mut stdout, &input, &result),
             Some(_) => write_summary_csv(&mut stdout, &result),
         },
-        FormatArg::Json => writeln!(stdout, "{}", json(&input, kind, &result)),
+        FormatArg::Json => writeln!(stdout, "{}", json(&input, &info, &result)),
     };
     printed.map_err(|source| Error::Io {
         path: PathBuf::from("<stdout>"),
@@ -233,12 +239,7 @@ fn human_length(m: f64) -> String {
     format!("{v:.4} {u}")
 }
 
-fn summary_table(
-    input: &str,
-    kind: HeightKind,
-    r: &TopographyPsd,
-    out: Option<&PathBuf>,
-) -> String {
+fn summary_table(input: &str, info: &FileInfo, r: &TopographyPsd, out: Option<&PathBuf>) -> String {
     let s = r.summary;
     let mut steps = Table::new();
     steps.set_header(vec!["step"]);
@@ -251,13 +252,36 @@ fn summary_table(
         "input".to_string(),
         format!(
             "{input} ({})",
-            if kind == HeightKind::Map {
+            if info.kind == HeightKind::Map {
                 "height map"
             } else {
                 "line scans"
             }
         ),
     ]);
+    if let Some(ch) = &info.channel {
+        t.add_row(vec![
+            "format, channel".to_string(),
+            format!(
+                "{}, {ch} (channels: {})",
+                info.format,
+                info.channels.join(", ")
+            ),
+        ]);
+        t.add_row(vec![
+            "grid used".to_string(),
+            format!(
+                "{} points ({:.3} % of the channel; {:.3} % not measured)",
+                info.grid
+                    .iter()
+                    .map(|n| n.to_string())
+                    .collect::<Vec<_>>()
+                    .join("×"),
+                100.0 * info.used_fraction,
+                100.0 * info.missing_fraction
+            ),
+        ]);
+    }
     t.add_row(vec![
         "h_rms (all wavelengths)".into(),
         human_length(s.h_rms),
@@ -292,10 +316,19 @@ fn summary_table(
     format!("{steps}\n{t}")
 }
 
-fn json(input: &str, kind: HeightKind, r: &TopographyPsd) -> serde_json::Value {
+fn json(input: &str, info: &FileInfo, r: &TopographyPsd) -> serde_json::Value {
     serde_json::json!({
         "input": input,
-        "kind": if kind == HeightKind::Map { "map" } else { "lines" },
+        "kind": if info.kind == HeightKind::Map { "map" } else { "lines" },
+        "format": info.format,
+        "channel": info.channel,
+        "channels": info.channels,
+        "grid": info.grid,
+        "size_m": info.size(),
+        "pixel_size_m": info.pixel_size,
+        "height_unit_in_file": info.height_unit_in_file,
+        "missing_fraction": info.missing_fraction,
+        "used_fraction": info.used_fraction,
         "steps": r.steps,
         "summary": r.summary,
         "q": r.c2d.q(),

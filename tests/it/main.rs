@@ -16,6 +16,7 @@ mod hostile_cli;
 mod hostile_readers;
 mod instrument;
 mod instrument_bin;
+mod instrument_cli;
 mod interface_ref;
 mod kernel_table;
 mod layer;
