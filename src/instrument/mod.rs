@@ -144,12 +144,38 @@ fn find(path: &Path, bytes: &[u8]) -> Option<&'static Format> {
     })
 }
 
-/// Reads the instrument file at `path`, detecting its format with [`detect`].
+/// The largest instrument file read (1 GiB: 2²⁷ heights of 8 bytes, twice the most heights a
+/// map may have), so that an endless or huge input ends with a message, not a hang.
+pub const MAX_FILE_BYTES: u64 = 1 << 30;
+/// How much of a file [`detect`] needs: every signature lies in its first bytes.
+pub const DETECT_BYTES: u64 = 1 << 16;
+
+/// The first `limit` bytes of the file, or all of them when it is shorter.
+pub fn head(path: &Path, limit: u64) -> Result<Vec<u8>, Error> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(limit).read_to_end(&mut bytes))
+        .map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    Ok(bytes)
+}
+
+/// Reads the instrument file at `path` (at most [`MAX_FILE_BYTES`]), detecting its format with
+/// [`detect`].
 pub fn read(path: &Path) -> Result<Reading, Error> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = head(path, MAX_FILE_BYTES + 1)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(bad(
+            path,
+            format!(
+                "the file is larger than {} MiB, the limit for an instrument file",
+                MAX_FILE_BYTES >> 20
+            ),
+        ));
+    }
     let format = find(path, &bytes).ok_or_else(|| {
         let names: Vec<&str> = FORMATS.iter().map(|f| f.name).collect();
         bad(

@@ -176,11 +176,8 @@ fn instrument_data(
     path: &std::path::Path,
     file: &HeightFileOptions,
 ) -> Result<Option<(FileInfo, Data)>, crate::Error> {
-    let bytes = std::fs::read(path).map_err(|source| crate::Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    if crate::instrument::detect(path, &bytes).is_none() {
+    let head = crate::instrument::head(path, crate::instrument::DETECT_BYTES)?;
+    if crate::instrument::detect(path, &head).is_none() {
         return Ok(None);
     }
     let reading = crate::instrument::read(path)?;
