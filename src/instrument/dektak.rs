@@ -8,7 +8,7 @@
 use std::path::Path;
 
 use super::bytes::latin1;
-use super::{Channel, Reading, bad_line, uniform_step};
+use super::{Reading, bad_line, uniform_step};
 use crate::Error;
 
 const MAGIC: &str = "Scan Parameters";
@@ -118,17 +118,11 @@ pub(crate) fn read(path: &Path, b: &[u8]) -> Result<Reading, Error> {
             ),
         )
     })?;
-    Ok(Reading {
-        format: "dektak",
-        channels: vec![Channel {
-            name: cols[1].trim().to_string(),
-            nx: n,
-            ny: 1,
-            dx: dx * sx,
-            dy: dx * sx,
-            z: z.into_iter().map(|v| v * sz).collect(),
-            unit_in_file: z_unit,
-            is_height: true,
-        }],
-    })
+    Ok(super::profile_reading(
+        "dektak",
+        cols[1].trim().to_string(),
+        dx * sx,
+        z.into_iter().map(|v| v * sz).collect(),
+        z_unit,
+    ))
 }

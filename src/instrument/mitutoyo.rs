@@ -14,7 +14,7 @@ use std::path::Path;
 
 use super::xml::{self, Element};
 use super::zip::{self, Archive};
-use super::{Channel, Reading, bad, uniform_step};
+use super::{Reading, bad, uniform_step};
 use crate::Error;
 use crate::units::{Dim, to_si};
 
@@ -215,17 +215,11 @@ pub(crate) fn read(path: &Path, b: &[u8]) -> Result<Reading, Error> {
             ),
         )
     })?;
-    Ok(Reading {
-        format: "mitutoyo",
-        channels: vec![Channel {
-            name: "mitutoyo".into(),
-            nx: n,
-            ny: 1,
-            dx: dx * sx,
-            dy: dx * sx,
-            z: z.into_iter().map(|v| v * sz).collect(),
-            unit_in_file: z_unit,
-            is_height: true,
-        }],
-    })
+    Ok(super::profile_reading(
+        "mitutoyo",
+        "mitutoyo".into(),
+        dx * sx,
+        z.into_iter().map(|v| v * sz).collect(),
+        z_unit,
+    ))
 }

@@ -235,6 +235,29 @@ impl Reading {
     }
 }
 
+/// A reading of one profile (a single line scan, ny = 1): spacing `dx` (m), heights `z` (m).
+pub(crate) fn profile_reading(
+    format: &'static str,
+    name: String,
+    dx: f64,
+    z: Vec<f64>,
+    unit_in_file: String,
+) -> Reading {
+    Reading {
+        format,
+        channels: vec![Channel {
+            name,
+            nx: z.len(),
+            ny: 1,
+            dx,
+            dy: dx,
+            z,
+            unit_in_file,
+            is_height: true,
+        }],
+    }
+}
+
 /// An error reading `path`, with a message saying what was expected. Binary formats have no
 /// lines: `line` is 0 and the message names the byte offset.
 pub(crate) fn bad(path: &Path, msg: impl Into<String>) -> crate::Error {
