@@ -8,11 +8,13 @@ use serde::Deserialize;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-/// A raw value: a TOML number, a string (usually a number with a unit) or a list of strings.
+/// A raw value: a TOML number, a boolean, a string (usually a number with a unit) or a list of
+/// strings.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(untagged)]
 pub enum Raw {
     Number(f64),
+    Bool(bool),
     Text(String),
     List(Vec<String>),
 }
@@ -154,6 +156,9 @@ impl Ctx<'_> {
                     format!("got a list (expected {dim}, e.g. a string like \"1 MPa\")"),
                 ));
             }
+            Raw::Bool(b) => {
+                return Err(self.error(&f.origin, key, format!("got {b} (expected {dim})")));
+            }
         };
         if !v.is_finite() {
             return Err(self.error(&f.origin, key, format!("{v} is not finite")));
@@ -178,6 +183,16 @@ impl Ctx<'_> {
         }
     }
 
+    /// A yes/no value: a TOML boolean, or `true`/`false` from a flag.
+    pub fn boolean(&self, f: &Field, key: &str) -> Result<bool, Error> {
+        match &f.raw {
+            Raw::Bool(b) => Ok(*b),
+            Raw::Text(t) if t.trim().eq_ignore_ascii_case("true") => Ok(true),
+            Raw::Text(t) if t.trim().eq_ignore_ascii_case("false") => Ok(false),
+            _ => Err(self.error(&f.origin, key, "expected true or false")),
+        }
+    }
+
     /// A list of strings (a TOML array, or a comma-separated string from a flag).
     pub fn list(&self, f: &Field, key: &str) -> Result<Vec<String>, Error> {
         match &f.raw {
@@ -187,7 +202,9 @@ impl Ctx<'_> {
                 .map(|s| s.trim().to_string())
                 .filter(|s| !s.is_empty())
                 .collect()),
-            Raw::Number(_) => Err(self.error(&f.origin, key, "expected a list of names")),
+            Raw::Number(_) | Raw::Bool(_) => {
+                Err(self.error(&f.origin, key, "expected a list of names"))
+            }
         }
     }
 

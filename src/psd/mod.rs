@@ -14,6 +14,8 @@
 //! Gaussian band), so no feature of the data is smoothed away.
 
 pub mod abel;
+pub mod ce;
+pub mod convention;
 pub mod read;
 
 use crate::error::Error;

@@ -28,6 +28,8 @@
 use crate::error::Error;
 use crate::psd::Tabulated;
 use crate::psd::abel::{self, Conversion};
+use crate::psd::ce;
+use crate::psd::convention::Convention;
 use crate::textio::{self, Header, Sep};
 use crate::units::{Dim, unit_scale};
 use std::path::Path;
@@ -88,6 +90,11 @@ pub struct ReadOptions {
     pub kind: Option<PsdKind>,
     /// How a 1D PSD is converted (the exact inverse Abel transform by default).
     pub conversion: Conversion,
+    /// The file's normalisation; `None`: this tool's, or SurfaceTopography's for a
+    /// contact.engineering download.
+    pub convention: Option<Convention>,
+    /// contact.engineering downloads: the series to read (`NAME` or `SUBJECT: NAME`).
+    pub series: Option<String>,
 }
 
 /// The largest spectrum file read: 64 MiB.
@@ -514,6 +521,18 @@ pub fn parse_spectrum(
     opts: &ReadOptions,
 ) -> Result<(Tabulated, Vec<String>), Error> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    if ce::detect(text) {
+        return parse_ce(text, path, opts);
+    }
+    if opts.series.is_some() {
+        return Err(Error::Input {
+            path: path.to_path_buf(),
+            line: 1,
+            msg: "a series was chosen, but this is not a contact.engineering download (it has \
+                  one series)"
+                .into(),
+        });
+    }
     let mut warnings = Vec::new();
     let mut lines = textio::content_lines(text).peekable();
     let Some(&(first_line, first)) = lines.peek() else {
@@ -535,14 +554,131 @@ pub fn parse_spectrum(
     };
     let cols = ctx.columns(opts, &mut warnings)?;
     let (q_scale, c_scale, kind) = ctx.scales(opts, cols, &mut warnings)?;
-    let mut rows = read_rows(&ctx, sep, lines, cols, (q_scale, c_scale))?;
+    let convention = opts.convention.unwrap_or_default();
+    let factor = match kind {
+        PsdKind::TwoD => convention.factor_2d(),
+        PsdKind::OneD => convention.factor_1d(),
+    };
+    let mut rows = read_rows(&ctx, sep, lines, cols, (q_scale, c_scale * factor))?;
     sort_rows(&ctx, &mut rows, &mut warnings)?;
+    if convention != Convention::Coatcheck {
+        warnings.push(format!(
+            "{}: C read in the {} normalisation and multiplied by {factor:.6e} into this tool's \
+             (see --psd-convention)",
+            path.display(),
+            convention.name()
+        ));
+    }
+    finish(&ctx, rows, kind, opts.conversion, warnings)
+}
+
+/// Sorted rows in SI (this tool's normalisation) as a 2D spectrum: as they are, or converted
+/// from a 1D PSD.
+fn finish(
+    ctx: &Ctx,
+    rows: Vec<Row>,
+    kind: PsdKind,
+    conversion: Conversion,
+    mut warnings: Vec<String>,
+) -> Result<(Tabulated, Vec<String>), Error> {
     let spectrum = match kind {
         PsdKind::TwoD => {
             let (q, c) = rows.iter().map(|r| (r.0, r.1)).unzip();
             Tabulated::new(q, c).map_err(|e| ctx.err(rows[0].2, e.to_string()))?
         }
-        PsdKind::OneD => convert_1d(&ctx, &rows, opts.conversion, &mut warnings)?,
+        PsdKind::OneD => convert_1d(ctx, &rows, conversion, &mut warnings)?,
     };
     Ok((spectrum, warnings))
+}
+
+/// A contact.engineering download ([`ce`]): its chosen series, in SurfaceTopography's
+/// normalisation, as this tool's 2D spectrum.
+fn parse_ce(
+    text: &str,
+    path: &Path,
+    opts: &ReadOptions,
+) -> Result<(Tabulated, Vec<String>), Error> {
+    let bad = |line: usize, msg: String| Error::Input {
+        path: path.to_path_buf(),
+        line,
+        msg,
+    };
+    if let Some(c) = opts
+        .convention
+        .filter(|&c| c != Convention::SurfaceTopography)
+    {
+        return Err(bad(
+            1,
+            format!(
+                "a contact.engineering download is in the surfacetopography normalisation, \
+                 not {} (drop --psd-convention or give surfacetopography)",
+                c.name()
+            ),
+        ));
+    }
+    if opts.q_col.is_some() || opts.c_col.is_some() {
+        return Err(bad(
+            1,
+            "a contact.engineering download is read by its series (--series), not by columns"
+                .into(),
+        ));
+    }
+    let s = ce::choose(ce::read(text, path)?, opts.series.as_deref(), path)?;
+    let line = s.rows.first().map_or(1, |r| r.2);
+    let x_unit = opts.q_unit.clone().or(s.x_unit.clone());
+    let y_unit = opts.c_unit.clone().or(s.y_unit.clone());
+    let scale = |u: &Option<String>, dim: Dim, what: &str| -> Result<f64, Error> {
+        match u {
+            None => Ok(1.0),
+            Some(u) => {
+                unit_scale(u, dim).map_err(|e| bad(line, format!("unit of {what} '{u}': {e}")))
+            }
+        }
+    };
+    let q_scale = scale(&x_unit, Dim::Length(-1), "the wavevector")?;
+    let y_scale = scale(&y_unit, Dim::Length(3), "the PSD (m³ in every series)")?;
+    let st = Convention::SurfaceTopography;
+    let mut rows: Vec<Row> = Vec::with_capacity(s.rows.len());
+    for &(x, y, ln) in &s.rows {
+        let q = x * q_scale;
+        // "q/π × 2D PSD": y = (q/π) C_ST, so C = π y/(q (2π)²); a 1D series: C1D = C1D_ST/π.
+        let c = if s.is_2d() {
+            std::f64::consts::PI * y * y_scale / q * st.factor_2d()
+        } else {
+            y * y_scale * st.factor_1d()
+        };
+        if !(q.is_finite() && q > 0.0 && c.is_finite() && c > 0.0) {
+            return Err(bad(
+                ln,
+                format!("wavevector {x:e}, PSD {y:e}; expected finite values > 0"),
+            ));
+        }
+        rows.push((q, c, ln));
+    }
+    let ctx = Ctx {
+        path,
+        first_line: line,
+        header: None,
+    };
+    let mut warnings = Vec::new();
+    sort_rows(&ctx, &mut rows, &mut warnings)?;
+    warnings.push(format!(
+        "{}: contact.engineering download, series '{}: {}' ({} points) read in the \
+         surfacetopography normalisation ({})",
+        path.display(),
+        s.subject,
+        s.name,
+        rows.len(),
+        if s.is_2d() {
+            "C = y/(4πq)"
+        } else {
+            "C1D = C1D_ST/π, then converted to 2D"
+        }
+    ));
+    let kind = if s.is_2d() {
+        PsdKind::TwoD
+    } else {
+        PsdKind::OneD
+    };
+    finish(&ctx, rows, kind, opts.conversion, warnings)
 }

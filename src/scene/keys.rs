@@ -169,6 +169,7 @@ const fn quantity(dim: Dim, range: Range) -> Value {
 const WAVENUMBER: Value = Value::Quantity(Dim::Length(-1), Range::Wavenumber);
 const PSD_FILE: Option<(Choice, u8)> = Some((Choice::Roughness, 0));
 const MODEL: Option<(Choice, u8)> = Some((Choice::Roughness, 2));
+const HEIGHTS: Option<(Choice, u8)> = Some((Choice::Roughness, 1));
 
 key_table! {
     Psd => Spec {
@@ -182,7 +183,7 @@ key_table! {
         name: "roughness.profile",
         flag: "--profile",
         value: Value::Files,
-        alt: Some((Choice::Roughness, 1)),
+        alt: HEIGHTS,
         help: "Measured heights (line scans or a height map, as `coatcheck psd` reads them); \
                the PSD is computed with the `coatcheck psd` defaults",
     },
@@ -291,6 +292,130 @@ key_table! {
         alt: PSD_FILE,
         help: "PSD file: 2d (C in m^4) or 1d (C1D in m^3 from line scans, converted exactly by the \
                inverse Abel transform); default from the unit of C, else 2d",
+    },
+    PsdConvention => Spec {
+        name: "roughness.psd_convention",
+        flag: "--psd-convention",
+        value: Value::Text,
+        alt: PSD_FILE,
+        help: "PSD file: normalisation of C: coatcheck (default), persson (1D two-sided) or \
+               surfacetopography (contact.engineering: 2D (2π)² and 1D π times coatcheck's)",
+    },
+    Series => Spec {
+        name: "roughness.series",
+        flag: "--series",
+        value: Value::Text,
+        alt: PSD_FILE,
+        help: "contact.engineering download: the series to read, NAME or 'SUBJECT: NAME' \
+               (default: q/π × 2D PSD, else 1D PSD along x)",
+    },
+    Conversion => Spec {
+        name: "roughness.conversion",
+        flag: "--conversion",
+        value: Value::Text,
+        alt: None,
+        help: "1D PSD files and line scans: inverse-abel (exact, default) or pi-q-shortcut \
+               (C = C1D/(πq), exact only for H = 1)",
+    },
+    Channel => Spec {
+        name: "roughness.channel",
+        flag: "--channel",
+        value: Value::Text,
+        alt: HEIGHTS,
+        help: "Heights from an instrument file: the channel, by name or 1-based number \
+               (default: the first height channel)",
+    },
+    HeightKind => Spec {
+        name: "roughness.kind",
+        flag: "--kind",
+        value: Value::Text,
+        alt: HEIGHTS,
+        help: "Heights: auto (default), lines (line scans) or map (a height map)",
+    },
+    Dx => Spec {
+        name: "roughness.dx",
+        flag: "--dx",
+        value: quantity(Dim::Length(1), Range::Si(1e-13, 1.0)),
+        alt: HEIGHTS,
+        help: "Line scans without an x column: sample spacing, e.g. 0.5um",
+    },
+    PixelSize => Spec {
+        name: "roughness.pixel_size",
+        flag: "--pixel-size",
+        value: quantity(Dim::Length(1), Range::Si(1e-13, 1.0)),
+        alt: HEIGHTS,
+        help: "Height map: pixel size (along x, and y unless --pixel-size-y), e.g. 1um",
+    },
+    PixelSizeY => Spec {
+        name: "roughness.pixel_size_y",
+        flag: "--pixel-size-y",
+        value: quantity(Dim::Length(1), Range::Si(1e-13, 1.0)),
+        alt: HEIGHTS,
+        help: "Height map: pixel size along y (between rows), if different from x",
+    },
+    ZUnit => Spec {
+        name: "roughness.z_unit",
+        flag: "--z-unit",
+        value: Value::Text,
+        alt: HEIGHTS,
+        help: "Heights: unit of the heights (m, um, nm), overriding the file's",
+    },
+    XUnit => Spec {
+        name: "roughness.x_unit",
+        flag: "--x-unit",
+        value: Value::Text,
+        alt: HEIGHTS,
+        help: "Line scans: unit of the x column",
+    },
+    Periodic => Spec {
+        name: "roughness.periodic",
+        flag: "--periodic",
+        value: Value::Text,
+        alt: HEIGHTS,
+        help: "Heights: true if the data are one period of a periodic surface (no window)",
+    },
+    Window => Spec {
+        name: "roughness.window",
+        flag: "--window",
+        value: Value::Text,
+        alt: HEIGHTS,
+        help: "Heights: window, hann or none (default: hann, none for periodic data)",
+    },
+    Detrend => Spec {
+        name: "roughness.detrend",
+        flag: "--detrend",
+        value: Value::Text,
+        alt: HEIGHTS,
+        help: "Heights: trend removed first, mean, tilt or curvature (default: tilt, mean for \
+               periodic data)",
+    },
+    PointsPerDecade => Spec {
+        name: "roughness.points_per_decade",
+        flag: "--points-per-decade",
+        value: quantity(
+            Dim::Dimensionless,
+            Range::Plain {
+                lo: Bound::Inclusive(1.0),
+                hi: Bound::Inclusive(1000.0),
+                expected: "a whole number of bins per decade, 1 to 1000",
+            },
+        ),
+        alt: HEIGHTS,
+        help: "Heights: log-spaced q bins per decade (default 10)",
+    },
+    CutoffPixels => Spec {
+        name: "roughness.cutoff_pixels",
+        flag: "--cutoff-pixels",
+        value: quantity(
+            Dim::Dimensionless,
+            Range::Plain {
+                lo: Bound::Inclusive(2.0),
+                hi: Bound::Inclusive(1e6),
+                expected: "a wavelength of at least 2 pixels (Nyquist)",
+            },
+        ),
+        alt: HEIGHTS,
+        help: "Heights: shortest wavelength kept, in pixels (default 4; 2 = Nyquist)",
     },
     FilmMaterial => Spec {
         name: "film.material",

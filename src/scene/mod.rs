@@ -42,12 +42,16 @@
 //!   and the scene as written ([`RawScene`]).
 //! - `resolve`: the validation into a [`Scene`] ([`resolve()`]).
 //! - `roughness`: the roughness ([`Roughness`]), its spectrum, and the validation of its keys.
+//! - `profile`: how heights become a spectrum ([`ProfileFormat`]: `coatcheck psd`'s options
+//!   as `roughness.*` keys).
 
 mod keys;
+mod profile;
 mod resolve;
 mod roughness;
 
 pub use keys::{Bound, Choice, KEYS, Key, Q_RANGE, Range, RawScene, Spec, Value};
+pub use profile::ProfileFormat;
 pub use resolve::resolve;
 pub use roughness::{PsdFormat, Roughness, RoughnessSource, Scale};
 

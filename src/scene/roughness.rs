@@ -3,8 +3,11 @@
 //! the scene's `roughness.*` keys into it.
 
 use super::keys::{Key, Range, Value};
+use super::profile::{ProfileFormat, resolve_conversion, resolve_profile_format};
 use super::resolve::Reader;
 use crate::error::Error;
+use crate::psd::abel::Conversion;
+use crate::psd::convention::Convention;
 use crate::psd::read::{Column, PsdKind, ReadOptions, read_spectrum};
 use crate::psd::{ModelParam, Spectrum};
 use crate::tomlin::{Field, Origin, Raw};
@@ -67,6 +70,17 @@ pub struct PsdFormat {
     pub c_unit: Option<String>,
     /// A 2D PSD (m^4) or a 1D PSD from line scans (m^3), converted by the inverse Abel transform.
     pub kind: Option<PsdKind>,
+    /// The normalisation of C (default: this tool's; SurfaceTopography's for contact.engineering
+    /// downloads).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub convention: Option<Convention>,
+    /// contact.engineering downloads: the series.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub series: Option<String>,
+    /// How a 1D PSD (file or line scans) becomes the 2D PSD (default: the inverse Abel
+    /// transform).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub conversion: Option<Conversion>,
 }
 
 impl PsdFormat {
@@ -78,7 +92,9 @@ impl PsdFormat {
             q_unit: self.q_unit.clone(),
             c_unit: self.c_unit.clone(),
             kind: self.kind,
-            ..ReadOptions::default()
+            conversion: self.conversion.unwrap_or_default(),
+            convention: self.convention,
+            series: self.series.clone(),
         })
     }
 }
@@ -96,6 +112,9 @@ pub struct Roughness {
     pub q_min: Option<f64>,
     pub q_max: Option<f64>,
     pub psd_format: PsdFormat,
+    /// How heights (`roughness.profile`) become a spectrum.
+    #[serde(skip_serializing_if = "ProfileFormat::is_default")]
+    pub profile: ProfileFormat,
     /// The scene file and line that named the file(s), for messages about unreadable files.
     #[serde(skip)]
     pub declared_at: Option<(PathBuf, usize)>,
@@ -175,8 +194,12 @@ impl Roughness {
                 (Spectrum::Tabulated(t), w)
             }
             RoughnessSource::Profile { path } => {
-                let (_, psd) =
-                    crate::topography::psd_of_file(path, &Default::default(), &Default::default())?;
+                let conversion = self.psd_format.conversion.unwrap_or_default();
+                let (_, psd) = crate::topography::psd_of_file(
+                    path,
+                    &self.profile.file_options(),
+                    &self.profile.psd_options(conversion),
+                )?;
                 (Spectrum::Tabulated(psd.c2d), vec![])
             }
             RoughnessSource::SelfAffine {
@@ -270,6 +293,7 @@ pub(super) fn resolve_roughness(r: Reader<'_>) -> Result<Roughness, Error> {
         q_min,
         q_max,
         psd_format: resolve_psd_format(r)?,
+        profile: resolve_profile_format(r)?,
         declared_at,
     })
 }
@@ -409,6 +433,15 @@ fn resolve_psd_format(r: Reader<'_>) -> Result<PsdFormat, Error> {
         q_unit: text(Key::QUnit)?,
         c_unit: text(Key::CUnit)?,
         kind,
+        convention: match (r.field(Key::PsdConvention), r.text(Key::PsdConvention)?) {
+            (Some(f), Some(c)) => Some(
+                c.parse::<Convention>()
+                    .map_err(|e| r.error(Key::PsdConvention, f, e))?,
+            ),
+            _ => None,
+        },
+        series: text(Key::Series)?,
+        conversion: resolve_conversion(r)?,
     })
 }
 

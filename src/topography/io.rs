@@ -66,7 +66,8 @@ pub struct MapOptions {
 }
 
 /// What a height file holds, as far as its first lines tell.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum HeightKind {
     Lines,
     Map,
