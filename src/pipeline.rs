@@ -12,6 +12,7 @@ use crate::check::{CheckKind, Checker, Outcome};
 use crate::error::Error;
 use crate::scene::{RoughnessSource, Scene};
 use crate::topography::io::{HeightKind, MapOptions, read_height_map, sniff};
+use crate::topography::plausible::{edge_mismatch_map, periodic_warning};
 use crate::verify::{Verification, verify};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -141,7 +142,7 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
     let read_warnings: Vec<String> = runs.iter().flat_map(|(_, _, w)| w.clone()).collect();
     let mut warnings: Vec<String> = scene.version_warning().into_iter().collect();
     warnings.extend(read_warnings.iter().cloned());
-    let (scene, outcome, _) = runs
+    let (scene, mut outcome, own_reads) = runs
         .into_iter()
         .min_by(|(_, a, _), (_, b, _)| {
             let (pa, ma) = severity(a);
@@ -154,14 +155,20 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
         _ => w.clone(),
     };
     warnings.extend(outcome.warnings.iter().map(named));
+    // The reading's warnings travel with the outcome into every report format.
+    outcome.warnings.splice(0..0, own_reads);
+    let mut exact_warnings = Vec::new();
     let exact = exact
         .map(|settings| {
-            let (map, surface) = scene_map(&scene)?;
+            let (map, surface, mismatch) = scene_map(&scene)?;
+            exact_warnings.extend(periodic_warning(&map, mismatch));
             let design = scene.design();
             let verification = verify(&surface, &design, thickness, settings)?;
             Ok::<_, Error>(Exact { map, verification })
         })
         .transpose()?;
+    outcome.warnings.extend(exact_warnings.iter().cloned());
+    warnings.extend(exact_warnings);
     Ok(Judged {
         scene,
         outcome,
@@ -172,8 +179,9 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
     })
 }
 
-/// The map behind `check --verify`: the scene's height file, which must be a height map.
-fn scene_map(scene: &Scene) -> Result<(PathBuf, Surface), Error> {
+/// The map behind `check --verify`: the scene's height file, which must be a height map, with
+/// its edge mismatch (it is solved as one period of a periodic surface).
+fn scene_map(scene: &Scene) -> Result<(PathBuf, Surface, f64), Error> {
     let RoughnessSource::Profile { path } = &scene.roughness.source else {
         return Err(Error::Value {
             origin: scene
@@ -197,5 +205,9 @@ fn scene_map(scene: &Scene) -> Result<(PathBuf, Surface), Error> {
         ..MapOptions::default()
     };
     let map = read_height_map(path, &opts)?;
-    Ok((path.clone(), Surface::from_height_map(&map)?))
+    Ok((
+        path.clone(),
+        Surface::from_height_map(&map)?,
+        edge_mismatch_map(&map),
+    ))
 }

@@ -23,6 +23,8 @@ pub struct Checker {
     q_high: f64,
     /// Rms slope ξ of the spectrum.
     rms_slope: f64,
+    /// h_rms of the spectrum, m.
+    h_rms: f64,
 }
 
 impl Checker {
@@ -73,6 +75,7 @@ impl Checker {
             q_low,
             q_high,
             rms_slope: spectrum.slope_sq().value.sqrt(),
+            h_rms: spectrum.h_rms_sq().value.sqrt(),
         })
     }
 
@@ -309,6 +312,8 @@ impl Checker {
             pass,
             governing,
             warnings,
+            h_rms: self.h_rms,
+            rms_slope: self.rms_slope,
         })
     }
 
@@ -341,6 +346,23 @@ impl Checker {
                 "rms slope {:.3} > 1: the theory is small-slope linear elasticity; at \
                  such slopes the film's strains are large and the stresses are indicative only",
                 self.rms_slope
+            ));
+        }
+        if thickness < self.h_rms {
+            w.push(format!(
+                "the film thickness d = {thickness:.4e} m is below the surface's h_rms = {:.4e} m: \
+                 the roughness is not a small perturbation of the film, and the theory's layer \
+                 of uniform thickness does not describe it",
+                self.h_rms
+            ));
+        }
+        let longest = 2.0 * std::f64::consts::PI / self.q_low;
+        if longest < thickness {
+            w.push(format!(
+                "the longest wavelength of the spectrum, 2π/q_low = {longest:.4e} m, is shorter \
+                 than the film thickness d = {thickness:.4e} m: the interface stress comes from \
+                 wavelengths of the order of d and longer, which the data do not hold (measure a \
+                 longer scan or a larger map)"
             ));
         }
         w

@@ -20,7 +20,11 @@
 //! The outcome carries a warning, with the number that triggered it, where the theory is
 //! strained: a low-octave share of G(q1) above [`LOW_OCTAVE_WARN`] (few long waves carry the
 //! contact: Persson under-estimates the area, so its contact-pressure figures are conservative),
-//! A/A0 above [`FULL_CONTACT_WARN`], and an rms slope above [`SLOPE_WARN`].
+//! A/A0 above [`FULL_CONTACT_WARN`], and an rms slope above [`SLOPE_WARN`]. Two more say the
+//! data do not fit the film: a film thinner than the surface's h_rms (the roughness is not a
+//! small perturbation of the film), and a longest wavelength of the spectrum, 2π/q_low, shorter
+//! than the film thickness (the interface stress comes from wavelengths of the order of d and
+//! longer, which were not measured).
 
 mod checker;
 pub mod criteria;
@@ -262,6 +266,10 @@ pub struct Outcome {
     /// The enabled check with the smallest margin (the one that decides the verdict).
     pub governing: Option<CheckKind>,
     pub warnings: Vec<String>,
+    /// h_rms of the spectrum used (as read or scaled), m.
+    pub h_rms: f64,
+    /// Rms slope of the spectrum used.
+    pub rms_slope: f64,
 }
 
 /// The largest enabled check's value/limit at one thickness (> 1 fails), the relative error

@@ -61,11 +61,6 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
             let exact = args.verify.then(BemSettings::default);
             let started = std::time::Instant::now();
             let judged = pipeline::judge(&scene, exact.as_ref())?;
-            if !several {
-                for w in &judged.read_warnings {
-                    eprintln!("coatcheck: warning: {w}");
-                }
-            }
             let run = SceneRun {
                 file: scene.file.clone().unwrap_or_else(|| PathBuf::from("scene")),
                 seconds: if several {

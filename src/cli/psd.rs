@@ -177,7 +177,12 @@ pub fn run(a: PsdArgs) -> Result<i32, Error> {
         FormatArg::Csv => match &a.output {
             None => write_csv(&mut stdout, &input, &result),
             Some(_) => write_summary_csv(&mut stdout, &result),
-        },
+        }
+        .and_then(|()| {
+            info.warnings
+                .iter()
+                .try_for_each(|w| writeln!(stdout, "# warning: {w}"))
+        }),
         FormatArg::Json => writeln!(stdout, "{}", json(&input, &info, &result)),
     };
     printed.map_err(|source| Error::Io {
@@ -313,7 +318,12 @@ fn summary_table(input: &str, info: &FileInfo, r: &TopographyPsd, out: Option<&P
             None => format!("{} (use --output FILE to save them)", r.c2d.q().len()),
         },
     ]);
-    format!("{steps}\n{t}")
+    let warnings: String = info
+        .warnings
+        .iter()
+        .map(|w| format!("\nwarning: {w}"))
+        .collect();
+    format!("{steps}\n{t}{warnings}")
 }
 
 fn json(input: &str, info: &FileInfo, r: &TopographyPsd) -> serde_json::Value {
@@ -330,6 +340,7 @@ fn json(input: &str, info: &FileInfo, r: &TopographyPsd) -> serde_json::Value {
         "missing_fraction": info.missing_fraction,
         "used_fraction": info.used_fraction,
         "steps": r.steps,
+        "warnings": info.warnings,
         "summary": r.summary,
         "q": r.c2d.q(),
         "c": r.c2d.c_values(),

@@ -554,6 +554,11 @@ pub fn parse_spectrum(
     };
     let cols = ctx.columns(opts, &mut warnings)?;
     let (q_scale, c_scale, kind) = ctx.scales(opts, cols, &mut warnings)?;
+    let stated = [(&opts.q_unit, cols.0), (&opts.c_unit, cols.1)]
+        .iter()
+        .any(|(flag, i)| {
+            flag.is_some() || ctx.header.as_ref().is_some_and(|h| h.unit(*i).is_some())
+        });
     let convention = opts.convention.unwrap_or_default();
     let factor = match kind {
         PsdKind::TwoD => convention.factor_2d(),
@@ -569,7 +574,11 @@ pub fn parse_spectrum(
             convention.name()
         ));
     }
-    finish(&ctx, rows, kind, opts.conversion, warnings)
+    let (t, warnings) = finish(&ctx, rows, kind, opts.conversion, warnings)?;
+    if !stated {
+        plausible_si(&ctx, &t)?;
+    }
+    Ok((t, warnings))
 }
 
 /// Sorted rows in SI (this tool's normalisation) as a 2D spectrum: as they are, or converted
@@ -589,6 +598,39 @@ fn finish(
         PsdKind::OneD => convert_1d(ctx, &rows, conversion, &mut warnings)?,
     };
     Ok((spectrum, warnings))
+}
+
+/// Wavenumbers a file without units is accepted with, read as 1/m: wavelengths from about
+/// 0.06 nm to 6 m.
+pub const Q_SI: (f64, f64) = (1.0, 1e11);
+
+/// What a file without units must hold, in messages ([`Q_SI`] and
+/// [`crate::topography::plausible::H_RMS_SI`]; a unit test holds them together).
+const EXPECTED_SI: &str = "q within 1e0 to 1e11 1/m and h_rms within 1e-11 to 1e-2 m; give the \
+     units: a header 'q (1/um), C (um^4)', or --q-unit 1/um --c-unit um^4 (roughness.q_unit, \
+     roughness.c_unit)";
+
+/// A spectrum from a file that states no units, read as SI: its q-range within [`Q_SI`] and
+/// its h_rms within [`crate::topography::plausible::H_RMS_SI`], else an error that suggests the
+/// unit flags.
+fn plausible_si(ctx: &Ctx, t: &Tabulated) -> Result<(), Error> {
+    let (lo, hi) = (t.q()[0], t.q()[t.q().len() - 1]);
+    let s = crate::psd::Spectrum::Tabulated(t.clone());
+    let (h, xi) = (s.h_rms_sq().value.sqrt(), s.slope_sq().value.sqrt());
+    let h_si = crate::topography::plausible::H_RMS_SI;
+    let inside = |v: f64, (a, b): (f64, f64)| !v.is_finite() || (a..=b).contains(&v);
+    if inside(lo, Q_SI) && inside(hi, Q_SI) && inside(h, h_si) {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        "spectrum of a file without units, read as SI",
+        format!(
+            "{}:{}: q from {lo:.3e} to {hi:.3e} 1/m, h_rms = {h:.3e} m, rms slope = {xi:.3e}",
+            ctx.path.display(),
+            ctx.hline()
+        ),
+        EXPECTED_SI,
+    ))
 }
 
 /// A contact.engineering download ([`ce`]): its chosen series, in SurfaceTopography's
@@ -681,4 +723,16 @@ fn parse_ce(
         PsdKind::OneD
     };
     finish(&ctx, rows, kind, opts.conversion, warnings)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_si_message_quotes_the_bounds() {
+        let h = crate::topography::plausible::H_RMS_SI;
+        assert!(EXPECTED_SI.contains(&format!("{:e} to {:e} m", h.0, h.1)));
+        assert!(EXPECTED_SI.contains(&format!("{:e} to {:e} 1/m", Q_SI.0, Q_SI.1)));
+    }
 }

@@ -188,6 +188,16 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
         &mpa_unit,
     );
     rows.push([
+        "h_rms of the spectrum used".into(),
+        format!("{} um", um(outcome.h_rms)),
+        String::new(),
+    ]);
+    rows.push([
+        "rms slope of the spectrum used".into(),
+        sig(outcome.rms_slope, 4),
+        String::new(),
+    ]);
+    rows.push([
         "share of G(q1) from the lowest octave".into(),
         sig(c.low_octave_share, 3),
         String::new(),
@@ -398,6 +408,8 @@ pub fn json(scene: &Scene, outcome: &Outcome) -> Value {
         .collect();
     m.insert("checks".into(), Value::Array(checks));
     m.insert("low_octave_share".into(), json!(c.low_octave_share));
+    m.insert("h_rms_m".into(), json!(outcome.h_rms));
+    m.insert("rms_slope".into(), json!(outcome.rms_slope));
     m.insert("warnings".into(), json!(outcome.warnings));
     m.insert(
         "scene".into(),
@@ -413,7 +425,8 @@ pub fn json(scene: &Scene, outcome: &Outcome) -> Value {
     Value::Object(m)
 }
 
-/// CSV: one row per result, `quantity,value,err,unit`, then the checks.
+/// CSV: one row per result, `quantity,value,err,unit`, then the checks, the verdict and one
+/// `warning` row per warning (its text as the value).
 pub fn csv(scene: &Scene, outcome: &Outcome) -> Result<String, Error> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let ser = |e: csv::Error| Error::Numerical {
@@ -447,6 +460,10 @@ pub fn csv(scene: &Scene, outcome: &Outcome) -> Result<String, Error> {
     w.write_record(["thickness", &format!("{:e}", outcome.thickness), "", "m"])
         .map_err(ser)?;
     w.write_record(["pressure", &format!("{:e}", scene.pressure), "", "Pa"])
+        .map_err(ser)?;
+    w.write_record(["h_rms", &format!("{:e}", outcome.h_rms), "", "m"])
+        .map_err(ser)?;
+    w.write_record(["rms_slope", &format!("{:e}", outcome.rms_slope), "", "1"])
         .map_err(ser)?;
     for (k, e, unit) in rows {
         w.write_record([k, &num(e.map(|e| e.value)), &num(e.map(|e| e.err)), unit])
@@ -487,6 +504,9 @@ pub fn csv(scene: &Scene, outcome: &Outcome) -> Result<String, Error> {
         "",
     ])
     .map_err(ser)?;
+    for warning in &outcome.warnings {
+        w.write_record(["warning", warning, "", ""]).map_err(ser)?;
+    }
     let bytes = w.into_inner().map_err(|e| Error::Numerical {
         what: "CSV output",
         detail: e.to_string(),

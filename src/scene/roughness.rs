@@ -195,12 +195,12 @@ impl Roughness {
             }
             RoughnessSource::Profile { path } => {
                 let conversion = self.psd_format.conversion.unwrap_or_default();
-                let (_, psd) = crate::topography::psd_of_file(
+                let (info, psd) = crate::topography::psd_of_file(
                     path,
                     &self.profile.file_options(),
                     &self.profile.psd_options(conversion),
                 )?;
-                (Spectrum::Tabulated(psd.c2d), vec![])
+                (Spectrum::Tabulated(psd.c2d), info.warnings)
             }
             RoughnessSource::SelfAffine {
                 hurst,

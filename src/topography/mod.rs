@@ -24,6 +24,7 @@
 //!   naming the file.
 
 pub mod io;
+pub mod plausible;
 pub mod spectrum;
 pub mod synth;
 
@@ -113,6 +114,8 @@ pub struct FileInfo {
     pub missing_fraction: f64,
     /// Share of the channel's points used (the complete rectangle); 1 for text files.
     pub used_fraction: f64,
+    /// What the reading found doubtful (data used as periodic whose edges do not join).
+    pub warnings: Vec<String>,
 }
 
 impl FileInfo {
@@ -124,6 +127,13 @@ impl FileInfo {
             .map(|(&n, &d)| n as f64 * d)
             .collect()
     }
+}
+
+/// The rms of `z` about its mean.
+fn rms_about_mean(z: &[f64]) -> f64 {
+    let n = z.len().max(1) as f64;
+    let mean = z.iter().sum::<f64>() / n;
+    (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt()
 }
 
 /// An error about the data of a whole file (no single line is at fault), naming the file.
@@ -145,13 +155,20 @@ pub fn psd_of_file(
     file: &HeightFileOptions,
     opts: &spectrum::PsdOptions,
 ) -> Result<(FileInfo, spectrum::TopographyPsd), crate::Error> {
-    if let Some(info) = instrument_data(path, file)? {
-        let result = match &info.1 {
-            Data::Lines(p) => spectrum::profile_psd(p, opts),
-            Data::Map(m) => spectrum::map_psd(m, opts),
+    if let Some((mut info, data)) = instrument_data(path, file)? {
+        let (result, mismatch) = match &data {
+            Data::Lines(p) => (
+                spectrum::profile_psd(p, opts),
+                plausible::edge_mismatch_profile(p),
+            ),
+            Data::Map(m) => (spectrum::map_psd(m, opts), plausible::edge_mismatch_map(m)),
+        };
+        let result = result.map_err(|e| in_file(path, e))?;
+        if file.periodic == Some(true) {
+            info.warnings
+                .extend(plausible::periodic_warning(path, mismatch));
         }
-        .map_err(|e| in_file(path, e))?;
-        return Ok((info.0, result));
+        return Ok((info, result));
     }
     if file.channel.is_some() {
         return Err(crate::Error::Input {
@@ -247,6 +264,7 @@ fn instrument_data(
         height_unit_in_file: Some(ch.unit_in_file.clone()),
         missing_fraction: ch.missing_fraction(),
         used_fraction: kept as f64 / ch.z.len() as f64,
+        warnings: Vec::new(),
     };
     Ok(Some((info, data)))
 }
@@ -370,7 +388,7 @@ fn text_psd(
             }
         },
     };
-    let (result, grid, pixel_size) = match kind {
+    let (result, grid, pixel_size, mismatch) = match kind {
         HeightKind::Lines => {
             let p = io::read_profile(
                 path,
@@ -382,8 +400,12 @@ fn text_psd(
                 },
             )?;
             let n = p.scans.first().map_or(0, Vec::len);
+            if file.z_unit.is_none() {
+                let all: Vec<f64> = p.scans.concat();
+                plausible::check_si(path, rms_about_mean(&all), p.dx)?;
+            }
             let r = spectrum::profile_psd(&p, opts).map_err(|e| in_file(path, e))?;
-            (r, vec![n], vec![p.dx])
+            (r, vec![n], vec![p.dx], plausible::edge_mismatch_profile(&p))
         }
         HeightKind::Map => {
             let m = io::read_height_map(
@@ -395,8 +417,16 @@ fn text_psd(
                     periodic: file.periodic,
                 },
             )?;
+            if file.z_unit.is_none() {
+                plausible::check_si(path, m.rms(), m.dx.max(m.dy))?;
+            }
             let r = spectrum::map_psd(&m, opts).map_err(|e| in_file(path, e))?;
-            (r, vec![m.nx, m.ny], vec![m.dx, m.dy])
+            (
+                r,
+                vec![m.nx, m.ny],
+                vec![m.dx, m.dy],
+                plausible::edge_mismatch_map(&m),
+            )
         }
     };
     let info = FileInfo {
@@ -409,6 +439,13 @@ fn text_psd(
         height_unit_in_file: None,
         missing_fraction: 0.0,
         used_fraction: 1.0,
+        warnings: if file.periodic == Some(true) {
+            plausible::periodic_warning(path, mismatch)
+                .into_iter()
+                .collect()
+        } else {
+            Vec::new()
+        },
     };
     Ok((info, result))
 }

@@ -23,6 +23,7 @@ mod layer;
 mod levers;
 mod measured_cli;
 mod output;
+mod plausibility;
 mod psd_convention;
 mod psd_convert;
 mod psd_moments;

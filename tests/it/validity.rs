@@ -108,8 +108,15 @@ fn thin_film_warning_names_the_share_and_calls_pressures_conservative() {
         low.contains("conservative") && low.contains("--verify"),
         "{low}"
     );
-    // q_L d = 10: 10 % (no warning).
-    assert!(warnings(1.0, 1e5, 100e-6).is_empty());
+    // q_L d = 10: 10 % (no warning of the lowest octave; d is then longer than the longest
+    // wavelength 2π/q_L = 63 µm, which has its own warning).
+    let w = warnings(1.0, 1e5, 100e-6);
+    assert!(!w.iter().any(|w| w.contains("lowest octave")), "{w:?}");
+    assert!(
+        w.iter()
+            .any(|w| w.contains("longest wavelength") && w.contains("6.2832e-5 m")),
+        "{w:?}"
+    );
 }
 
 #[test]

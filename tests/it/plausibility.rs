@@ -1,0 +1,273 @@
+//! Plausibility of measured data in every output format: the h_rms and rms slope used, the
+//! warnings (film thinner than h_rms, longest wavelength shorter than the film, rms slope
+//! above 1, a non-periodic map used as periodic) in the table, JSON and CSV; files without
+//! units accepted only with magnitudes plausible in SI.
+
+use std::process::{Command, Output};
+
+const BIN: &str = env!("CARGO_BIN_EXE_coatcheck");
+const MATERIALS: [&str; 8] = [
+    "--film",
+    "paper-rubber",
+    "--substrate",
+    "paper-steel",
+    "--bond",
+    "epoxy",
+    "--pressure",
+    "0.1MPa",
+];
+
+fn run(args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .output()
+        .expect("run coatcheck")
+}
+
+/// `check` with `args` in each format: (table, JSON, CSV) standard outputs.
+fn each_format(args: &[&str]) -> (String, serde_json::Value, String) {
+    let out = |format: &str| {
+        let mut all = vec!["check"];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&MATERIALS);
+        all.extend_from_slice(&["--format", format]);
+        let o = run(&all);
+        assert!(
+            matches!(o.status.code(), Some(0 | 1)),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        String::from_utf8(o.stdout).unwrap()
+    };
+    (
+        out("table"),
+        serde_json::from_str(&out("json")).expect("json"),
+        out("csv"),
+    )
+}
+
+/// The warning containing every needle, present in all three formats.
+fn warned_everywhere(args: &[&str], needles: &[&str]) {
+    let (table, json, csv) = each_format(args);
+    let has = |text: &str| needles.iter().all(|n| text.contains(n));
+    assert!(
+        table.lines().any(|l| l.starts_with("warning: ") && has(l)),
+        "table: {table}"
+    );
+    assert!(
+        json["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|w| has(w.as_str().unwrap())),
+        "json: {}",
+        json["warnings"]
+    );
+    assert!(
+        csv.lines().any(|l| l.starts_with("warning,") && has(l)),
+        "csv: {csv}"
+    );
+}
+
+const MODEL: [&str; 8] = [
+    "--model",
+    "self-affine",
+    "--hurst",
+    "0.8",
+    "--q0",
+    "1e5",
+    "--q1",
+    "1e8",
+];
+
+fn model(extra: &[&str]) -> Vec<&'static str> {
+    let mut v: Vec<&'static str> = MODEL.to_vec();
+    v.extend(
+        extra
+            .iter()
+            .map(|s| -> &'static str { Box::leak(s.to_string().into_boxed_str()) }),
+    );
+    v
+}
+
+#[test]
+fn h_rms_and_rms_slope_used_are_printed_in_every_format() {
+    let args = model(&["--rms-height", "2um", "--thickness", "50um"]);
+    let (table, json, csv) = each_format(&args);
+    let h = json["h_rms_m"].as_f64().unwrap();
+    assert!((h / 2e-6 - 1.0).abs() < 1e-6, "{h}");
+    let xi = json["rms_slope"].as_f64().unwrap();
+    assert!(xi > 0.0);
+    assert!(
+        table.contains("h_rms of the spectrum used") && table.contains("2.000 um"),
+        "{table}"
+    );
+    assert!(table.contains("rms slope of the spectrum used"), "{table}");
+    let row = |name: &str| -> f64 {
+        csv.lines()
+            .find_map(|l| l.strip_prefix(&format!("{name},")))
+            .and_then(|r| r.split(',').next())
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    // (serde_json parses floats to within an ulp or two.)
+    assert!((row("h_rms") / h - 1.0).abs() < 1e-14);
+    assert!((row("rms_slope") / xi - 1.0).abs() < 1e-14);
+    // A given rms slope is the one used.
+    let (_, json, _) = each_format(&model(&["--rms-slope", "0.5", "--thickness", "50um"]));
+    assert!((json["rms_slope"].as_f64().unwrap() - 0.5).abs() < 1e-9);
+}
+
+#[test]
+fn film_thinner_than_h_rms_is_warned_with_numbers() {
+    warned_everywhere(
+        &model(&["--rms-height", "5um", "--thickness", "2um"]),
+        &["film thickness d = 2.0000e-6 m", "h_rms = 5.0000e-6 m"],
+    );
+}
+
+#[test]
+fn longest_wavelength_shorter_than_film_is_warned_with_numbers() {
+    // q0 = 1e5 1/m: the longest wavelength is 2π/q0 = 62.8 µm < d = 100 µm.
+    warned_everywhere(
+        &model(&["--rms-slope", "0.5", "--thickness", "100um"]),
+        &["2π/q_low = 6.2832e-5 m", "d = 1.0000e-4 m"],
+    );
+}
+
+#[test]
+fn rms_slope_above_one_is_warned_with_numbers() {
+    warned_everywhere(
+        &model(&["--rms-slope", "2", "--thickness", "50um"]),
+        &["rms slope 2.000 > 1"],
+    );
+}
+
+#[test]
+fn non_periodic_map_used_as_periodic_is_warned() {
+    // A measured map (x3p) is not periodic: its edges do not join.
+    warned_everywhere(
+        &[
+            "--profile",
+            "tests/data/instrument/x3p-2.x3p",
+            "--periodic",
+            "true",
+            "--thickness",
+            "1um",
+        ],
+        &["x3p-2.x3p", "edges do not join", "times the rms step"],
+    );
+    // The synthetic example map is one period: no such warning.
+    let (table, _, _) = each_format(&[
+        "--profile",
+        "examples/data/height-map.csv",
+        "--periodic",
+        "true",
+        "--thickness",
+        "1um",
+    ]);
+    assert!(!table.contains("edges do not join"), "{table}");
+    // `psd --periodic` says so too, in each of its formats.
+    for format in ["table", "json", "csv"] {
+        let o = run(&[
+            "psd",
+            "tests/data/instrument/x3p-2.x3p",
+            "--periodic",
+            "--format",
+            format,
+        ]);
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert!(out.contains("edges do not join"), "{format}: {out}");
+    }
+}
+
+#[test]
+fn files_without_units_must_be_plausible_in_si() {
+    let dir = tempfile::tempdir().unwrap();
+    // A PSD in 1/um and um^4 without units: q 0.1 … 100, C up to 1e2.
+    let psd = dir.path().join("um.csv");
+    let rows: String = (0..31)
+        .map(|i| {
+            let q = 0.1 * 10f64.powf(i as f64 / 10.0);
+            format!("{q:e},{:e}\n", 1e-2 * q.powf(-3.6))
+        })
+        .collect();
+    std::fs::write(&psd, rows).unwrap();
+    let o = run(&[
+        "check",
+        "--psd",
+        psd.to_str().unwrap(),
+        "--thickness",
+        "10um",
+        "--film",
+        "paper-rubber",
+        "--substrate",
+        "paper-steel",
+        "--bond",
+        "epoxy",
+        "--pressure",
+        "0.1MPa",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        e.contains("um.csv") && e.contains("--q-unit") && e.contains("h_rms"),
+        "{e}"
+    );
+    // The same file with its units given is read.
+    let o = run(&[
+        "check",
+        "--psd",
+        psd.to_str().unwrap(),
+        "--q-unit",
+        "1/um",
+        "--c-unit",
+        "um^4",
+        "--thickness",
+        "10um",
+        "--film",
+        "paper-rubber",
+        "--substrate",
+        "paper-steel",
+        "--bond",
+        "epoxy",
+        "--pressure",
+        "0.1MPa",
+    ]);
+    assert!(
+        matches!(o.status.code(), Some(0 | 1)),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    // Heights in nm without units: h_rms of hundreds of "metres".
+    let map = dir.path().join("nm.csv");
+    let text: String = (0..32)
+        .map(|iy| {
+            (0..32)
+                .map(|ix| format!("{}", 300.0 * ((ix * 7 + iy * 3) % 11) as f64))
+                .collect::<Vec<_>>()
+                .join(",")
+                + "\n"
+        })
+        .collect();
+    std::fs::write(&map, text).unwrap();
+    let o = run(&["psd", map.to_str().unwrap(), "--pixel-size", "1um"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("nm.csv") && e.contains("--z-unit"), "{e}");
+    let o = run(&[
+        "psd",
+        map.to_str().unwrap(),
+        "--pixel-size",
+        "1um",
+        "--z-unit",
+        "nm",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
