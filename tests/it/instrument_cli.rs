@@ -40,6 +40,18 @@ fn x3p_map_reports_grid_size_and_format() {
         let (s, p) = (s.as_f64().unwrap(), p.as_f64().unwrap());
         assert!((s - 650.0 * p).abs() <= 1e-12 * s);
     }
+    // The physical size SurfaceTopography reads from the same file (its `physical_sizes`,
+    // printed by tests/data/instrument/st_ref.py; also in tests/it/instrument.rs).
+    for (got, reference) in size
+        .iter()
+        .zip([8.29767313942749e-05, 0.0002044783737930349])
+    {
+        let got = got.as_f64().unwrap();
+        assert!(
+            (got / reference - 1.0).abs() < 1e-12,
+            "{got:e} vs {reference:e}"
+        );
+    }
 }
 
 #[test]

@@ -271,3 +271,60 @@ fn files_without_units_must_be_plausible_in_si() {
         String::from_utf8_lossy(&o.stderr)
     );
 }
+
+#[test]
+fn psd_summary_h_rms_is_the_rms_after_the_named_detrend() {
+    // z = plane + A cos(θx i) cos(θy j) on a 32 × 32 grid: the pattern is orthogonal to 1, i and
+    // j (Σ_j cos(θy j) = 0), so removing the least-squares plane leaves it alone, rms A/2;
+    // removing the mean leaves plane + pattern, whose rms is computed here directly.
+    let (n, a) = (32usize, 1e-6);
+    let (tx, ty) = (
+        2.0 * std::f64::consts::PI * 3.0 / n as f64,
+        2.0 * std::f64::consts::PI * 5.0 / n as f64,
+    );
+    let z = |i: usize, j: usize| {
+        2e-8 * i as f64 - 3e-8 * j as f64 + 5e-7 + a * (tx * i as f64).cos() * (ty * j as f64).cos()
+    };
+    let all: Vec<f64> = (0..n * n).map(|k| z(k % n, k / n)).collect();
+    let mean = all.iter().sum::<f64>() / all.len() as f64;
+    let rms_mean = (all.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / all.len() as f64).sqrt();
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("plane.csv");
+    let text: String = (0..n)
+        .map(|j| {
+            (0..n)
+                .map(|i| format!("{:e}", z(i, j)))
+                .collect::<Vec<_>>()
+                .join(",")
+                + "\n"
+        })
+        .collect();
+    std::fs::write(&map, text).unwrap();
+    for (detrend, want) in [("tilt", a / 2.0), ("mean", rms_mean)] {
+        let o = run(&[
+            "psd",
+            map.to_str().unwrap(),
+            "--pixel-size",
+            "1um",
+            "--z-unit",
+            "m",
+            "--detrend",
+            detrend,
+            "--format",
+            "json",
+        ]);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let h = v["summary"]["h_rms"].as_f64().unwrap();
+        assert!(
+            (h / want - 1.0).abs() < 1e-9,
+            "{detrend}: {h:e} vs {want:e}"
+        );
+    }
+    assert!(rms_mean > 1.2 * a / 2.0, "the plane matters: {rms_mean:e}");
+}
