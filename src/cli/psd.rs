@@ -276,14 +276,15 @@ fn summary_table(input: &str, info: &FileInfo, r: &TopographyPsd, out: Option<&P
         t.add_row(vec![
             "grid used".to_string(),
             format!(
-                "{} points ({:.3} % of the channel; {:.3} % not measured)",
+                "{} points ({:.3} % of the channel; {:.3} % not measured, {:.3} % filled)",
                 info.grid
                     .iter()
                     .map(|n| n.to_string())
                     .collect::<Vec<_>>()
                     .join("×"),
                 100.0 * info.used_fraction,
-                100.0 * info.missing_fraction
+                100.0 * info.missing_fraction,
+                100.0 * info.filled_fraction
             ),
         ]);
     }
@@ -339,6 +340,7 @@ fn json(input: &str, info: &FileInfo, r: &TopographyPsd) -> serde_json::Value {
         "height_unit_in_file": info.height_unit_in_file,
         "missing_fraction": info.missing_fraction,
         "used_fraction": info.used_fraction,
+        "filled_fraction": info.filled_fraction,
         "steps": r.steps,
         "warnings": info.warnings,
         "summary": r.summary,

@@ -622,14 +622,12 @@ fn plausible_si(ctx: &Ctx, t: &Tabulated) -> Result<(), Error> {
     if inside(lo, Q_SI) && inside(hi, Q_SI) && inside(h, h_si) {
         return Ok(());
     }
-    Err(Error::invalid(
-        "spectrum of a file without units, read as SI",
+    Err(ctx.err(
+        ctx.hline(),
         format!(
-            "{}:{}: q from {lo:.3e} to {hi:.3e} 1/m, h_rms = {h:.3e} m, rms slope = {xi:.3e}",
-            ctx.path.display(),
-            ctx.hline()
+            "the file states no units, and read as SI its q runs from {lo:.3e} to {hi:.3e} 1/m, \
+             h_rms = {h:.3e} m, rms slope = {xi:.3e}; expected {EXPECTED_SI}"
         ),
-        EXPECTED_SI,
     ))
 }
 

@@ -16,13 +16,16 @@
 //! - [`psd_of_file`]: file → PSD in one call (`coatcheck psd`, `coatcheck check --profile`).
 //!   An instrument file (any format [`crate::instrument::detect`] recognises) is read with its
 //!   own metadata; a channel with a single row is a line scan, else a height map. Points the
-//!   instrument did not measure (NaN) are not interpolated: the PSD is taken of the largest
-//!   complete axis-aligned rectangle of measured points (the longest complete run for a line
-//!   scan), which leaves the spectrum unbiased at the cost of the longest wavelengths; the
-//!   share of points not measured is reported as `missing_fraction`, the share used as `used_fraction`. Fewer than
+//!   instrument did not measure (NaN): holes of at most [`fill::MAX_HOLE`] points (dropouts)
+//!   are filled by harmonic interpolation ([`fill`], with its measured effect on the PSD);
+//!   larger holes and bands are cut away by taking the PSD of the largest complete
+//!   axis-aligned rectangle (the longest complete run for a line scan), which leaves the
+//!   spectrum unbiased at the cost of the longest wavelengths. The shares are reported as
+//!   `missing_fraction` (not measured), `filled_fraction` and `used_fraction`. Fewer than
 //!   [`MIN_MAP_SIDE`]² (maps) or [`MIN_PROFILE_POINTS`] (line scans) complete points is an error
 //!   naming the file.
 
+pub mod fill;
 pub mod io;
 pub mod plausible;
 pub mod spectrum;
@@ -114,6 +117,9 @@ pub struct FileInfo {
     pub missing_fraction: f64,
     /// Share of the channel's points used (the complete rectangle); 1 for text files.
     pub used_fraction: f64,
+    /// Share of the channel's points not measured but filled ([`fill`]: holes of at most
+    /// [`fill::MAX_HOLE`] points); 0 for text files.
+    pub filled_fraction: f64,
     /// What the reading found doubtful (data used as periodic whose edges do not join).
     pub warnings: Vec<String>,
 }
@@ -210,8 +216,10 @@ fn instrument_data(
         msg,
     };
     let periodic = file.periodic.unwrap_or(false);
+    let mut z = ch.z.clone();
+    let filled = fill::fill_small_holes(&mut z, ch.nx, ch.ny);
     let (grid, pixel_size, data, kept) = if ch.ny == 1 {
-        let (start, len) = longest_run(&ch.z);
+        let (start, len) = longest_run(&z);
         if len < MIN_PROFILE_POINTS {
             return Err(bad(format!(
                 "channel '{}': too few points: the longest run of measured points is {len}, \
@@ -221,12 +229,12 @@ fn instrument_data(
         }
         let p = Profile {
             dx: ch.dx,
-            scans: vec![ch.z[start..start + len].to_vec()],
+            scans: vec![z[start..start + len].to_vec()],
             periodic,
         };
         (vec![len], vec![ch.dx], Data::Lines(p), len)
     } else {
-        let r = largest_rectangle(&ch.z, ch.nx, ch.ny);
+        let r = largest_rectangle(&z, ch.nx, ch.ny);
         if r.w < MIN_MAP_SIDE || r.h < MIN_MAP_SIDE {
             return Err(bad(format!(
                 "channel '{}' ({}×{} points): too few points: the largest complete rectangle \
@@ -235,11 +243,7 @@ fn instrument_data(
             )));
         }
         let z = (r.y..r.y + r.h)
-            .flat_map(|iy| {
-                ch.z[iy * ch.nx + r.x..iy * ch.nx + r.x + r.w]
-                    .iter()
-                    .copied()
-            })
+            .flat_map(|iy| z[iy * ch.nx + r.x..iy * ch.nx + r.x + r.w].iter().copied())
             .collect();
         let m = HeightMap {
             nx: r.w,
@@ -264,6 +268,7 @@ fn instrument_data(
         height_unit_in_file: Some(ch.unit_in_file.clone()),
         missing_fraction: ch.missing_fraction(),
         used_fraction: kept as f64 / ch.z.len() as f64,
+        filled_fraction: filled as f64 / ch.z.len() as f64,
         warnings: Vec::new(),
     };
     Ok(Some((info, data)))
@@ -439,6 +444,7 @@ fn text_psd(
         height_unit_in_file: None,
         missing_fraction: 0.0,
         used_fraction: 1.0,
+        filled_fraction: 0.0,
         warnings: if file.periodic == Some(true) {
             plausible::periodic_warning(path, mismatch)
                 .into_iter()

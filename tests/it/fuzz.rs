@@ -629,7 +629,8 @@ fn absurd_magnitudes_are_rejected_at_their_line() {
     }
     std::fs::write(
         dir.path().join("s.csv"),
-        "q,C\n1e5,1e290\n1e6,1e280\n1e7,1e270\n",
+        // Units stated: the file is taken as SI, and the scene's rms-slope range rejects it.
+        "q (1/m),C (m^4)\n1e5,1e290\n1e6,1e280\n1e7,1e270\n",
     )
     .unwrap();
     let measured = SCENE

@@ -68,6 +68,17 @@ fn missing_points_are_reported() {
     let v = psd_json("opd-1.opd", &[]);
     assert!(v["missing_fraction"].as_f64().unwrap() > 0.0);
     assert!(v["used_fraction"].as_f64().unwrap() < 1.0);
+    // sur-2.sur: 117 points not measured (SurfaceTopography's mask); the dropouts among them
+    // are filled, so the rectangle keeps 84 % of the map (57 % without filling).
+    let v = psd_json("sur-2.sur", &[]);
+    let (used, filled) = (
+        v["used_fraction"].as_f64().unwrap(),
+        v["filled_fraction"].as_f64().unwrap(),
+    );
+    assert!(
+        used > 0.8 && filled > 0.0 && filled <= 117.0 / (563.0 * 484.0),
+        "{v}"
+    );
 }
 
 #[test]
