@@ -163,7 +163,7 @@ pub fn run(a: PsdArgs) -> Result<i32, Error> {
     let (info, result) = psd_of_file(&a.file, &file, &opts)?;
     let input = a.file.display().to_string();
     if let Some(out) = &a.output {
-        coatcheck::report::write_with(out, |w| write_csv(w, &input, &result))?;
+        coatcheck::report::write_with(out, |w| write_csv(w, &input, &info, &result))?;
     }
     let mut stdout = std::io::stdout().lock();
     let printed = match a.format {
@@ -175,14 +175,13 @@ pub fn run(a: PsdArgs) -> Result<i32, Error> {
             )
         }
         FormatArg::Csv => match &a.output {
-            None => write_csv(&mut stdout, &input, &result),
-            Some(_) => write_summary_csv(&mut stdout, &result),
-        }
-        .and_then(|()| {
-            info.warnings
-                .iter()
-                .try_for_each(|w| writeln!(stdout, "# warning: {w}"))
-        }),
+            None => write_csv(&mut stdout, &input, &info, &result),
+            Some(_) => write_summary_csv(&mut stdout, &result).and_then(|()| {
+                info.warnings
+                    .iter()
+                    .try_for_each(|w| writeln!(stdout, "# warning: {w}"))
+            }),
+        },
         FormatArg::Json => writeln!(stdout, "{}", json(&input, &info, &result)),
     };
     printed.map_err(|source| Error::Io {
@@ -192,10 +191,18 @@ pub fn run(a: PsdArgs) -> Result<i32, Error> {
     Ok(0)
 }
 
-fn write_csv(w: &mut dyn Write, input: &str, r: &TopographyPsd) -> std::io::Result<()> {
+fn write_csv(
+    w: &mut dyn Write,
+    input: &str,
+    info: &FileInfo,
+    r: &TopographyPsd,
+) -> std::io::Result<()> {
     writeln!(w, "# coatcheck psd of {input}")?;
     for s in &r.steps {
         writeln!(w, "# {s}")?;
+    }
+    for warning in &info.warnings {
+        writeln!(w, "# warning: {warning}")?;
     }
     let s = r.summary;
     writeln!(

@@ -180,6 +180,19 @@ fn non_periodic_map_used_as_periodic_is_warned() {
         let out = String::from_utf8_lossy(&o.stdout);
         assert!(out.contains("edges do not join"), "{format}: {out}");
     }
+    // and in the PSD file it writes.
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("c.csv");
+    let o = run(&[
+        "psd",
+        "tests/data/instrument/x3p-2.x3p",
+        "--periodic",
+        "--output",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let written = std::fs::read_to_string(&file).unwrap();
+    assert!(written.contains("# warning: ") && written.contains("edges do not join"));
 }
 
 #[test]
