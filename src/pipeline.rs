@@ -8,6 +8,7 @@
 //! governing check.
 
 use crate::bem::{BemSettings, Surface};
+use crate::check::levers::{Lever, levers};
 use crate::check::{CheckKind, Checker, Outcome};
 use crate::error::Error;
 use crate::scene::{RoughnessSource, Scene};
@@ -47,6 +48,8 @@ pub struct Judged {
     pub warnings: Vec<String>,
     /// The exact check, when asked for.
     pub exact: Option<Exact>,
+    /// What alone would make a failing design pass (empty when it passes).
+    pub levers: Vec<Lever>,
 }
 
 impl Judged {
@@ -162,6 +165,12 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
             Ok::<_, Error>(Exact { map, verification })
         })
         .transpose()?;
+    let levers = if outcome.pass {
+        Vec::new()
+    } else {
+        let (spectrum, _) = scene.roughness.spectrum()?;
+        levers(&spectrum, &scene.design(), scene.settings, &outcome)?
+    };
     Ok(Judged {
         scene,
         outcome,
@@ -169,6 +178,7 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
         read_warnings,
         warnings,
         exact,
+        levers,
     })
 }
 

@@ -6,11 +6,11 @@
 
 use coatcheck::Error;
 use coatcheck::psd::abel::Conversion;
+use coatcheck::report::{sig, table, um};
 use coatcheck::topography::io::HeightKind;
 use coatcheck::topography::spectrum::{Detrend, PsdOptions, TopographyPsd, Window};
 use coatcheck::topography::{FileInfo, HeightFileOptions, psd_of_file};
 use coatcheck::units::{Dim, parse_quantity};
-use comfy_table::Table;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -227,27 +227,13 @@ fn write_summary_csv(w: &mut dyn Write, r: &TopographyPsd) -> std::io::Result<()
     writeln!(w, "outside_fraction,{:e},", s.outside_fraction)
 }
 
-/// A length in a readable unit, 4 significant digits.
-fn human_length(m: f64) -> String {
-    let (v, u) = if m >= 1e-3 {
-        (m * 1e3, "mm")
-    } else if m >= 1e-6 {
-        (m * 1e6, "µm")
-    } else {
-        (m * 1e9, "nm")
-    };
-    format!("{v:.4} {u}")
-}
-
 fn summary_table(input: &str, info: &FileInfo, r: &TopographyPsd, out: Option<&PathBuf>) -> String {
     let s = r.summary;
-    let mut steps = Table::new();
-    steps.set_header(vec!["step"]);
+    let mut steps = table(&["step"]);
     for st in &r.steps {
         steps.add_row(vec![st.clone()]);
     }
-    let mut t = Table::new();
-    t.set_header(vec!["quantity", "value"]);
+    let mut t = table(&["quantity", "value"]);
     t.add_row(vec![
         "input".to_string(),
         format!(
@@ -284,27 +270,24 @@ fn summary_table(input: &str, info: &FileInfo, r: &TopographyPsd, out: Option<&P
     }
     t.add_row(vec![
         "h_rms (all wavelengths)".into(),
-        human_length(s.h_rms),
+        format!("{} µm", um(s.h_rms)),
     ]);
     t.add_row(vec![
         "h_rms (kept q-range)".into(),
-        human_length(s.h_rms_kept),
+        format!("{} µm", um(s.h_rms_kept)),
     ]);
-    t.add_row(vec![
-        "rms slope (kept)".into(),
-        format!("{:.4}", s.rms_slope),
-    ]);
+    t.add_row(vec!["rms slope (kept)".into(), sig(s.rms_slope, 4)]);
     t.add_row(vec![
         "rms curvature (kept)".into(),
-        format!("{:.4} 1/µm", s.rms_curvature * 1e-6),
+        format!("{} 1/µm", sig(s.rms_curvature * 1e-6, 4)),
     ]);
     t.add_row(vec![
         "kept q-range".into(),
-        format!("{:.4e} – {:.4e} 1/m", s.q_min, s.q_max),
+        format!("{} – {} 1/m", sig(s.q_min, 4), sig(s.q_max, 4)),
     ]);
     t.add_row(vec![
         "share of h_rms² outside".into(),
-        format!("{:.3} %", 100.0 * s.outside_fraction),
+        format!("{} %", sig(100.0 * s.outside_fraction, 3)),
     ]);
     t.add_row(vec![
         "PSD points".into(),

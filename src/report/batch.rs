@@ -2,13 +2,14 @@
 //! summary table with failures first, and the per-file table of a scene with several roughness
 //! files.
 
-use super::sig;
+use super::{margin_cell, sig, table, utilisation_cell, wrap};
 use crate::batch::{SceneRun, Totals};
 use crate::check::CheckKind;
 use crate::error::Error;
 use crate::pipeline::{Judged, governing_margin};
-use comfy_table::{Table, presets::UTF8_FULL_CONDENSED};
 use serde::Serialize;
+use std::ops::Not;
+use std::path::Path;
 
 /// One check of a scene in a record.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -182,22 +183,35 @@ pub fn csv(runs: &[SceneRun]) -> Result<String, Error> {
     Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
-/// The summary table: scene, verdict, governing check, margin, d_min, warnings (failures first),
-/// then the errors and warnings in full, then the totals.
+/// The directory every scene file is in, when they share one (shown once above the table so
+/// that the scene column fits).
+fn common_dir(runs: &[SceneRun]) -> Option<&Path> {
+    let first = runs.first()?.file.parent()?;
+    let shared =
+        first.as_os_str().is_empty().not() && runs.iter().all(|r| r.file.parent() == Some(first));
+    shared.then_some(first)
+}
+
+/// The summary table: scene, verdict, governing check, its utilisation and margin, d_min
+/// (failures first), then the errors and warnings in full, then the totals.
 pub fn summary(runs: &[SceneRun], seconds: f64) -> String {
-    let mut t = Table::new();
-    t.load_preset(UTF8_FULL_CONDENSED);
-    t.set_header([
+    let mut t = table(&[
         "scene",
         "verdict",
-        "governing check",
+        "governing",
+        "utilisation",
         "margin",
         "d_min",
-        "warnings",
     ]);
+    let dir = common_dir(runs);
     let mut notes = String::new();
     for run in runs {
-        let mut scene = run.file.display().to_string();
+        let mut scene = match dir {
+            Some(d) => run.file.strip_prefix(d).unwrap_or(&run.file),
+            None => &run.file,
+        }
+        .display()
+        .to_string();
         let verdict = run.verdict().to_uppercase();
         match &run.result {
             Err(e) => {
@@ -209,7 +223,8 @@ pub fn summary(runs: &[SceneRun], seconds: f64) -> String {
                     "-".into(),
                     "-".into(),
                 ]);
-                notes += &format!("error: {e}\n");
+                notes += &wrap(&format!("error: {e}"));
+                notes.push('\n');
             }
             Ok(j) => {
                 if let Some(f) = j.worst_file() {
@@ -217,36 +232,36 @@ pub fn summary(runs: &[SceneRun], seconds: f64) -> String {
                     scene += &format!("\n(worst of {}: {})", j.files.len(), name.display());
                 }
                 let o = &j.outcome;
-                let margin = governing_margin(o)
-                    .map(|m| format!("{:+.1} %", 100.0 * m))
-                    .unwrap_or_else(|| "-".into());
+                let margin = governing_margin(o);
                 let dmin = match &o.min_thickness {
                     None => "-".into(),
                     Some(m) => match m.thickness {
                         None => "none passes".into(),
                         Some(d) if m.all_pass_to_floor => {
-                            format!("<= {} um", sig(d.value * 1e6, 4))
+                            format!("<= {} µm", sig(d.value * 1e6, 4))
                         }
-                        Some(d) => format!("{} um", sig(d.value * 1e6, 4)),
+                        Some(d) => format!("{} µm", sig(d.value * 1e6, 4)),
                     },
                 };
                 t.add_row([
                     scene,
                     verdict,
                     o.governing.map_or("-", CheckKind::name).into(),
-                    margin,
+                    utilisation_cell(margin),
+                    margin_cell(margin),
                     dmin,
-                    j.warnings.len().to_string(),
                 ]);
                 for w in &j.warnings {
-                    notes += &format!("warning: {}: {w}\n", run.file.display());
+                    notes += &wrap(&format!("warning: {}: {w}", run.file.display()));
+                    notes.push('\n');
                 }
             }
         }
     }
     let n = Totals::of(runs);
+    let head = dir.map_or(String::new(), |d| format!("scenes in {}:\n", d.display()));
     format!(
-        "{t}\n{notes}{} scenes: {} passed, {} failed, {} could not be evaluated ({:.2} s)\n",
+        "{head}{t}\n{notes}{} scenes: {} passed, {} failed, {} could not be evaluated ({:.2} s)\n",
         n.scenes, n.pass, n.fail, n.error, seconds
     )
 }
@@ -256,17 +271,20 @@ pub fn files_table(j: &Judged) -> String {
     if j.files.len() < 2 {
         return String::new();
     }
-    let mut t = Table::new();
-    t.load_preset(UTF8_FULL_CONDENSED);
-    t.set_header(["roughness file", "verdict", "governing check", "margin"]);
+    let mut t = table(&[
+        "roughness file",
+        "verdict",
+        "governing check",
+        "utilisation",
+        "margin",
+    ]);
     for f in &j.files {
         t.add_row([
             f.path.display().to_string(),
             if f.pass { "PASS" } else { "FAIL" }.into(),
             f.governing.map_or("-", CheckKind::name).into(),
-            f.margin
-                .map(|m| format!("{:+.1} %", 100.0 * m))
-                .unwrap_or_else(|| "-".into()),
+            utilisation_cell(f.margin),
+            margin_cell(f.margin),
         ]);
     }
     let worst = j

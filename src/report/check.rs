@@ -2,11 +2,14 @@
 //!
 //! The JSON object carries `verdict`, `area_fraction`, `mean_contact_pressure_pa`,
 //! `sigma_rms_top_pa`, `sigma_rms_interface_pa`, `tau_rms_interface_pa`, `tau_peak_pa`,
-//! `sigma_peak_interface_pa`, `e_eff_over_e_film`, `min_thickness_m`, `governing_check` and
-//! `checks`, each numeric result with a sibling `<key>_err` (its numerical error estimate), plus
-//! the inputs and warnings.
+//! `sigma_peak_interface_pa`, `e_eff_over_e_film`, `min_thickness_m`, `governing_check`,
+//! `checks` and `levers` (what alone would make a failing design pass), each numeric result with
+//! a sibling `<key>_err` (its numerical error estimate), plus the inputs and warnings.
 
-use super::{Format, batch, modulus, mpa, sig, table, um, verify};
+use super::{
+    Format, batch, margin_cell, modulus, mpa, sig, table, um, utilisation_cell, verify, wrap,
+};
+use crate::check::levers::Lever;
 use crate::check::{CheckKind, CheckResult, Outcome};
 use crate::error::Error;
 use crate::pipeline::Judged;
@@ -63,7 +66,7 @@ pub(crate) fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
     }
     match r.scale {
         Some(Scale::RmsSlope(x)) => rows.push(("rms slope".into(), sig(x, 4))),
-        Some(Scale::RmsHeight(h)) => rows.push(("rms height".into(), format!("{} um", um(h)))),
+        Some(Scale::RmsHeight(h)) => rows.push(("rms height".into(), format!("{} µm", um(h)))),
         None => {}
     }
     if let Some(q) = r.q_min {
@@ -83,7 +86,7 @@ pub(crate) fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
         ),
     ));
     if let Some(d) = scene.thickness {
-        rows.push(("film thickness".into(), format!("{} um", um(d))));
+        rows.push(("film thickness".into(), format!("{} µm", um(d))));
     }
     let s = &scene.substrate;
     let y = s
@@ -140,7 +143,7 @@ fn enabled_names(scene: &Scene) -> Vec<&'static str> {
 /// Value and limit of a check in human units.
 fn check_cells(c: &CheckResult) -> (String, String) {
     let f = |x: f64| match c.kind {
-        CheckKind::MinThickness => format!("{} um", um(x)),
+        CheckKind::MinThickness => format!("{} µm", um(x)),
         _ => format!("{} MPa", mpa(x)),
     };
     let limit = match (c.kind, c.limit) {
@@ -205,8 +208,8 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
     rows
 }
 
-/// The checks as (check, value, limit, margin, result), as the table shows them.
-pub(crate) fn check_rows(outcome: &Outcome) -> Vec<[String; 5]> {
+/// The checks as (check, value, limit, utilisation, margin, result), as the table shows them.
+pub(crate) fn check_rows(outcome: &Outcome) -> Vec<[String; 6]> {
     let ev = &outcome.evaluation;
     outcome
         .checks
@@ -220,23 +223,21 @@ pub(crate) fn check_rows(outcome: &Outcome) -> Vec<[String; 5]> {
                     " (interface peak)"
                 };
             }
-            let margin = ch
-                .margin
-                .map(|m| format!("{:+.1} %", 100.0 * m))
-                .unwrap_or_else(|| "-".into());
             [
                 ch.kind.name().to_string(),
                 v,
                 l,
-                margin,
+                utilisation_cell(ch.margin),
+                margin_cell(ch.margin),
                 if ch.pass { "PASS" } else { "FAIL" }.into(),
             ]
         })
         .collect()
 }
 
-/// The default output: scene, results, checks, d_min, warnings.
-pub fn human(scene: &Scene, outcome: &Outcome) -> String {
+/// The default output: scene, results, checks, d_min, the verdict, what would make a failing
+/// design pass, warnings.
+pub fn human(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> String {
     let mut out = String::new();
     let mut t = table(&["scene", "value"]);
     for (k, v) in scene_rows(scene) {
@@ -248,40 +249,55 @@ pub fn human(scene: &Scene, outcome: &Outcome) -> String {
         t.add_row(r.to_vec());
     }
     out += &format!("{t}\n");
-    let mut t = table(&["check", "value", "limit", "margin", "result"]);
+    let mut t = table(&["check", "value", "limit", "utilisation", "margin", "result"]);
     for r in check_rows(outcome) {
         t.add_row(r.to_vec());
     }
     out += &format!("{t}\n");
 
+    let governing =
+        |g: Option<CheckKind>| format!("governing check: {}", g.map_or("-", CheckKind::name));
     if let Some(m) = &outcome.min_thickness {
         out += &match (m.thickness, m.governing) {
             (None, g) => format!(
-                "minimum thickness: no thickness passes (governed by {})\n",
-                g.map(CheckKind::name).unwrap_or("-")
+                "minimum thickness: no thickness passes ({})\n",
+                governing(g)
             ),
             (Some(d), _) if m.all_pass_to_floor => format!(
-                "minimum thickness: every thickness down to {} um passes\n",
+                "minimum thickness: every thickness down to {} µm passes\n",
                 um(d.value)
             ),
             (Some(d), g) => format!(
-                "minimum thickness: {} um ± {} um (governed by {})\n",
+                "minimum thickness: {} µm ± {} µm ({})\n",
                 um(d.value),
                 sig(d.err * 1e6, 2),
-                g.map(CheckKind::name).unwrap_or("-")
+                governing(g)
             ),
         };
     }
+    let gov = outcome
+        .governing
+        .and_then(|g| outcome.checks.iter().find(|c| c.kind == g));
     out += &format!(
         "verdict: {}{}\n",
         if outcome.pass { "PASS" } else { "FAIL" },
-        outcome
-            .governing
-            .map(|g| format!(" (governing check: {})", g.name()))
-            .unwrap_or_default()
+        gov.map(|c| format!(
+            " ({}, utilisation {})",
+            governing(Some(c.kind)),
+            utilisation_cell(c.margin)
+        ))
+        .unwrap_or_default()
     );
+    if !levers.is_empty() {
+        out += "what alone would make it pass:\n";
+        for l in levers {
+            out += &wrap(&format!("  - {}", super::html::lever_text(l)));
+            out.push('\n');
+        }
+    }
     for w in &outcome.warnings {
-        out += &format!("warning: {w}\n");
+        out += &wrap(&format!("warning: {w}"));
+        out.push('\n');
     }
     out
 }
@@ -295,7 +311,11 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
     let several = !j.files.is_empty();
     Ok(match format {
         Format::Table => {
-            let mut t = format!("{}{}", batch::files_table(j), human(scene, outcome));
+            let mut t = format!(
+                "{}{}",
+                batch::files_table(j),
+                human(scene, outcome, &j.levers)
+            );
             if let Some(x) = &j.exact {
                 t += &format!("\n{}", verify::check_table(&x.map, ev, &x.verification));
             }
@@ -303,8 +323,8 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
         }
         Format::Json => {
             // JSON shows NaN as null: the table of the same numbers is checked instead.
-            super::finite_only(&human(scene, outcome))?;
-            let mut v = json(scene, outcome);
+            super::finite_only(&human(scene, outcome, &j.levers))?;
+            let mut v = json(scene, outcome, &j.levers);
             if several {
                 let worst = j.worst_file().map(|p| p.display().to_string());
                 v["worst_file"] = json!(worst);
@@ -341,7 +361,7 @@ fn put(m: &mut Map<String, Value>, key: &str, e: Option<Estimate>) {
 }
 
 /// The JSON object (see the module docs for the keys).
-pub fn json(scene: &Scene, outcome: &Outcome) -> Value {
+pub fn json(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> Value {
     let ev = &outcome.evaluation;
     let c = &ev.contact;
     let mut m = Map::new();
@@ -397,6 +417,7 @@ pub fn json(scene: &Scene, outcome: &Outcome) -> Value {
         })
         .collect();
     m.insert("checks".into(), Value::Array(checks));
+    m.insert("levers".into(), json!(levers));
     m.insert("low_octave_share".into(), json!(c.low_octave_share));
     m.insert("warnings".into(), json!(outcome.warnings));
     m.insert(

@@ -2,14 +2,12 @@
 //! contact, its JSON object, the fields as CSV) and of the exact section of `check --verify`
 //! (tables in MPa with 4 significant digits like the check's report, JSON, CSV rows).
 
-use super::sig;
+use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
 use crate::bem::{BemSolution, FieldStats, InterfaceFields, Surface};
 use crate::check::Evaluation;
 use crate::error::Error;
 use crate::layer::Stack;
 use crate::verify::{Comparison, Verification, check_rows};
-use comfy_table::Table;
-use comfy_table::presets::UTF8_FULL_CONDENSED;
 use serde_json::{Value, json};
 use std::io::Write;
 use std::path::Path;
@@ -36,55 +34,58 @@ fn stats_json(s: &FieldStats) -> Value {
 pub fn verify_table(i: &VerifyInputs, c: &Comparison) -> String {
     let (s, sol, stack, p0) = (&c.surface, &c.solution, i.stack, i.p0);
     let (xi, seconds, rows) = (s.rms_slope(), c.seconds, &c.rows);
-    let mut scene = Table::new();
-    scene.set_header(vec!["scene", "value"]);
+    let mut scene = table(&["scene", "value"]);
     let l = stack.layers;
     scene.add_row(vec![
         "height map".into(),
         format!(
-            "{} ({} x {}, pixel {:.4e} x {:.4e} m)",
+            "{} ({} x {}, pixel {} x {} µm)",
             i.map.display(),
             s.nx,
             s.ny,
-            s.dx,
-            s.dy
+            um(s.dx),
+            um(s.dy)
         ),
     ]);
     scene.add_row(vec![
         "h_rms, rms slope".into(),
-        format!("{:.4e} m, {:.4}", sol.h_rms, xi),
+        format!("{} µm, {}", um(sol.h_rms), sig(xi, 4)),
     ]);
     scene.add_row(vec![
         "film".into(),
-        format!("E = {:.4e} Pa, nu = {}", l.film.youngs, l.film.poisson),
+        format!("E = {}, nu = {}", modulus(l.film.youngs), l.film.poisson),
     ]);
     scene.add_row(vec![
         "substrate".into(),
         format!(
-            "E = {:.4e} Pa, nu = {}",
-            l.substrate.youngs, l.substrate.poisson
+            "E = {}, nu = {}",
+            modulus(l.substrate.youngs),
+            l.substrate.poisson
         ),
     ]);
     scene.add_row(vec![
         "thickness d, q_L d".into(),
         format!(
-            "{:.4e} m, {:.4}",
-            stack.thickness,
-            s.q_low() * stack.thickness
+            "{} µm, {}",
+            um(stack.thickness),
+            sig(s.q_low() * stack.thickness, 4)
         ),
     ]);
-    scene.add_row(vec!["pressure p0".into(), format!("{p0:.4e} Pa")]);
+    scene.add_row(vec!["pressure p0".into(), format!("{} MPa", mpa(p0))]);
     let c = &sol.convergence;
     scene.add_row(vec![
         "solver".into(),
         format!(
-            "{:?} after {} iterations in {seconds:.2} s (rms gap in contact {:.2e} m, \
-             penetration {:.2e} m, tolerance {:.2e} m)",
-            c.status, c.iterations, c.gap_rms_in_contact, c.max_penetration, c.tolerance
+            "{:?} after {} iterations in {seconds:.2} s (rms gap in contact {:.2e} µm, \
+             penetration {:.2e} µm, tolerance {:.2e} µm)",
+            c.status,
+            c.iterations,
+            c.gap_rms_in_contact * 1e6,
+            c.max_penetration * 1e6,
+            c.tolerance * 1e6
         ),
     ]);
-    let mut t = Table::new();
-    t.set_header(vec![
+    let mut t = table(&[
         "quantity",
         "unit",
         "Persson",
@@ -92,22 +93,27 @@ pub fn verify_table(i: &VerifyInputs, c: &Comparison) -> String {
         "exact (BEM)",
         "exact/Persson",
     ]);
-    let num = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4e}"));
+    // Stresses in MPa like every table; the rest as they are.
+    let scale = |unit: &str| if unit == "Pa" { 1e-6 } else { 1.0 };
     for r in rows {
+        let k = scale(r.unit);
         t.add_row(vec![
             r.name.clone(),
-            r.unit.to_string(),
-            num(r.persson.map(|p| p.value)),
-            r.persson.map_or("-".into(), |p| format!("{:.1e}", p.err)),
-            format!("{:.4e}", r.exact),
-            r.ratio().map_or("-".into(), |v| format!("{v:.3}")),
+            if r.unit == "Pa" { "MPa" } else { r.unit }.to_string(),
+            r.persson.map_or("-".into(), |p| sig(p.value * k, 4)),
+            r.persson.map_or("-".into(), |p| sig(p.err * k, 2)),
+            sig(r.exact * k, 4),
+            r.ratio().map_or("-".into(), |v| sig(v, 3)),
         ]);
     }
     format!(
-        "{scene}\n{t}\nA/A0 counts pixels in contact (±{:.1e} from the solver tolerance); refine the map to see \
-         the discretisation error. Quantiles: contact pressure over the contact area, interface \
-         stresses over the whole interface.\n",
-        sol.area_fraction.err
+        "{scene}\n{t}\n{}\n",
+        wrap(&format!(
+            "A/A0 counts pixels in contact (±{:.1e} from the solver tolerance); refine the map to \
+             see the discretisation error. Quantiles: contact pressure over the contact area, \
+             interface stresses over the whole interface.",
+            sol.area_fraction.err
+        ))
     )
 }
 
@@ -187,22 +193,21 @@ pub fn write_fields(
 
 /// The `check --verify` section as tables (MPa, 4 significant digits, like the check's report).
 pub fn check_table(map: &Path, ev: &Evaluation, v: &Verification) -> String {
-    let mut out = format!(
+    let mut out = wrap(&format!(
         "exact check on the height map {} ({} x {} pixels, q_L d = {}; boundary elements, {} \
-         iterations; error = difference to the same map at half resolution)\n",
+         iterations; error = difference to the same map at half resolution)",
         map.display(),
         v.nx,
         v.ny,
         sig(v.q_low_d, 3),
         v.convergence.iterations
-    );
+    ));
+    out.push('\n');
     let show = |key: &str, x: f64| match key.strip_suffix("_pa") {
         Some(_) => format!("{} MPa", sig(x * 1e-6, 4)),
         None => sig(x, 4),
     };
-    let mut t = Table::new();
-    t.load_preset(UTF8_FULL_CONDENSED);
-    t.set_header(vec![
+    let mut t = table(&[
         "quantity",
         "Persson",
         "exact (BEM)",
@@ -223,9 +228,14 @@ pub fn check_table(map: &Path, ev: &Evaluation, v: &Verification) -> String {
         ]);
     }
     out += &format!("{t}\n");
-    let mut c = Table::new();
-    c.load_preset(UTF8_FULL_CONDENSED);
-    c.set_header(vec!["check (exact)", "value", "limit", "margin", "result"]);
+    let mut c = table(&[
+        "check (exact)",
+        "value",
+        "limit",
+        "utilisation",
+        "margin",
+        "result",
+    ]);
     for ch in &v.checks {
         let mut result = if ch.pass { "PASS" } else { "FAIL" }.to_string();
         if !ch.resolved {
@@ -235,16 +245,18 @@ pub fn check_table(map: &Path, ev: &Evaluation, v: &Verification) -> String {
             ch.kind.name().to_string(),
             show("_pa", ch.value.value),
             format!("<= {}", show("_pa", ch.limit)),
-            format!("{:+.1} %", 100.0 * ch.margin),
+            utilisation_cell(Some(ch.margin)),
+            margin_cell(Some(ch.margin)),
             result,
         ]);
     }
     out += &format!("{c}\n");
-    out += &format!(
+    out += &wrap(&format!(
         "exact verdict: {}; with --verify the design passes only if both Persson's and the exact \
-         checks pass (min-thickness is judged by Persson's theory only)\n",
+         checks pass (min-thickness is judged by Persson's theory only)",
         if v.pass { "PASS" } else { "FAIL" }
-    );
+    ));
+    out.push('\n');
     out
 }
 
