@@ -23,6 +23,7 @@ use std::path::{Path, PathBuf};
 pub struct FileVerdict {
     pub path: PathBuf,
     pub pass: bool,
+    #[serde(rename = "governing_check")]
     pub governing: Option<CheckKind>,
     pub margin: Option<f64>,
 }

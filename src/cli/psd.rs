@@ -215,16 +215,22 @@ fn write_csv(w: &mut dyn Write, input: &str, r: &TopographyPsd) -> std::io::Resu
     Ok(())
 }
 
+/// The summary as CSV, `quantity,value,unit`, the quantities named as in the JSON's `summary`.
 fn write_summary_csv(w: &mut dyn Write, r: &TopographyPsd) -> std::io::Result<()> {
     let s = r.summary;
     writeln!(w, "quantity,value,unit")?;
-    writeln!(w, "h_rms,{:e},m", s.h_rms)?;
-    writeln!(w, "h_rms_kept,{:e},m", s.h_rms_kept)?;
-    writeln!(w, "rms_slope,{:e},", s.rms_slope)?;
-    writeln!(w, "rms_curvature,{:e},1/m", s.rms_curvature)?;
-    writeln!(w, "q_min,{:e},1/m", s.q_min)?;
-    writeln!(w, "q_max,{:e},1/m", s.q_max)?;
-    writeln!(w, "outside_fraction,{:e},", s.outside_fraction)
+    for (key, value, unit) in [
+        ("h_rms_m", s.h_rms, "m"),
+        ("h_rms_kept_m", s.h_rms_kept, "m"),
+        ("rms_slope", s.rms_slope, "1"),
+        ("rms_curvature_per_m", s.rms_curvature, "1/m"),
+        ("q_min_per_m", s.q_min, "1/m"),
+        ("q_max_per_m", s.q_max, "1/m"),
+        ("outside_fraction", s.outside_fraction, "1"),
+    ] {
+        writeln!(w, "{key},{value:e},{unit}")?;
+    }
+    Ok(())
 }
 
 fn summary_table(input: &str, info: &FileInfo, r: &TopographyPsd, out: Option<&PathBuf>) -> String {
@@ -299,8 +305,12 @@ fn summary_table(input: &str, info: &FileInfo, r: &TopographyPsd, out: Option<&P
     format!("{steps}\n{t}")
 }
 
+/// The JSON object (schema `src/report/schema/psd.schema.json`; SI, the unit in each key).
 fn json(input: &str, info: &FileInfo, r: &TopographyPsd) -> serde_json::Value {
+    let s = r.summary;
     serde_json::json!({
+        "schema_version": coatcheck::report::SCHEMA_VERSION,
+        "coatcheck_version": env!("CARGO_PKG_VERSION"),
         "input": input,
         "kind": if info.kind == HeightKind::Map { "map" } else { "lines" },
         "format": info.format,
@@ -313,9 +323,17 @@ fn json(input: &str, info: &FileInfo, r: &TopographyPsd) -> serde_json::Value {
         "missing_fraction": info.missing_fraction,
         "used_fraction": info.used_fraction,
         "steps": r.steps,
-        "summary": r.summary,
-        "q": r.c2d.q(),
-        "c": r.c2d.c_values(),
-        "c1d": r.c1d.as_ref().map(|t| t.c_values()),
+        "summary": {
+            "h_rms_m": s.h_rms,
+            "h_rms_kept_m": s.h_rms_kept,
+            "rms_slope": s.rms_slope,
+            "rms_curvature_per_m": s.rms_curvature,
+            "q_min_per_m": s.q_min,
+            "q_max_per_m": s.q_max,
+            "outside_fraction": s.outside_fraction,
+        },
+        "q_per_m": r.c2d.q(),
+        "c_m4": r.c2d.c_values(),
+        "c1d_m3": r.c1d.as_ref().map(|t| t.c_values()),
     })
 }

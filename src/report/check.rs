@@ -114,6 +114,23 @@ pub(crate) fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
         "nominal pressure p0".into(),
         format!("{} MPa", mpa(scene.pressure)),
     ));
+    for o in &scene.overrides {
+        let show = |x: f64| match o.unit {
+            "Pa" if o.key.ends_with("youngs_modulus") => modulus(x),
+            "Pa" => format!("{} MPa", mpa(x)),
+            _ => sig(x, 4),
+        };
+        rows.push((
+            "override".into(),
+            format!(
+                "{} = {} (library {}: {})",
+                o.key,
+                show(o.value),
+                o.material,
+                o.library_value.map_or("none".into(), show)
+            ),
+        ));
+    }
     let c = &scene.criteria;
     rows.push((
         "criteria".into(),
@@ -304,6 +321,7 @@ pub fn human(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> String {
 
 /// The report of one judged scene: the check's tables, JSON or CSV, with the per-file verdicts
 /// when the scene lists several roughness files, and the exact section of `check --verify`.
+/// CSV is the batch's shape, one row ([`batch::records_csv`]).
 pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
     let (scene, outcome) = (&j.scene, &j.outcome);
     let ev = &outcome.evaluation;
@@ -341,16 +359,8 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
             format!("{v:#}\n")
         }
         Format::Csv => {
-            let mut c = csv(scene, outcome)?;
-            if several {
-                let worst = j.worst_file().map(|p| p.display().to_string());
-                c += &format!("worst_file,{},,\n", worst.unwrap_or_default());
-            }
-            if let Some(x) = &j.exact {
-                c += &verify::check_csv(ev, &x.verification);
-                c += &format!("verdict_with_verify,{verdict},,\n");
-            }
-            c
+            let file = scene.file.clone().unwrap_or_else(|| "scene".into());
+            batch::records_csv(&[batch::Record::judged(&file, j, 0.0)])?
         }
     })
 }
@@ -429,88 +439,8 @@ pub fn json(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> Value {
             "bond": scene.bond,
             "criteria": scene.criteria,
             "rtol": scene.settings.rtol,
+            "overrides": scene.overrides,
         }),
     );
     Value::Object(m)
-}
-
-/// CSV: one row per result, `quantity,value,err,unit`, then the checks.
-pub fn csv(scene: &Scene, outcome: &Outcome) -> Result<String, Error> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let ser = |e: csv::Error| Error::Numerical {
-        what: "CSV output",
-        detail: e.to_string(),
-    };
-    w.write_record(["quantity", "value", "err", "unit"])
-        .map_err(ser)?;
-    let ev = &outcome.evaluation;
-    let c = &ev.contact;
-    let num = |x: Option<f64>| x.map(|x| format!("{x:e}")).unwrap_or_default();
-    let rows: Vec<(&str, Option<Estimate>, &str)> = vec![
-        ("area_fraction", Some(c.area_fraction), "1"),
-        (
-            "mean_contact_pressure",
-            Some(ev.mean_contact_pressure),
-            "Pa",
-        ),
-        ("sigma_rms_top", c.sigma_rms_top, "Pa"),
-        ("sigma_rms_interface", c.sigma_rms_interface, "Pa"),
-        ("tau_rms_interface", c.tau_rms_interface, "Pa"),
-        ("tau_peak", ev.tau_peak, "Pa"),
-        ("sigma_peak_interface", ev.sigma_peak_interface, "Pa"),
-        ("e_eff_over_e_film", c.e_eff_over_e_film, "1"),
-        (
-            "min_thickness",
-            outcome.min_thickness.as_ref().and_then(|m| m.thickness),
-            "m",
-        ),
-    ];
-    w.write_record(["thickness", &format!("{:e}", outcome.thickness), "", "m"])
-        .map_err(ser)?;
-    w.write_record(["pressure", &format!("{:e}", scene.pressure), "", "Pa"])
-        .map_err(ser)?;
-    for (k, e, unit) in rows {
-        w.write_record([k, &num(e.map(|e| e.value)), &num(e.map(|e| e.err)), unit])
-            .map_err(ser)?;
-    }
-    for ch in &outcome.checks {
-        let unit = if ch.kind == CheckKind::MinThickness {
-            "m"
-        } else {
-            "Pa"
-        };
-        w.write_record([
-            &format!("check:{}", ch.kind.name()),
-            &format!("{:e}", ch.value.value),
-            &format!("{:e}", ch.value.err),
-            unit,
-        ])
-        .map_err(ser)?;
-        w.write_record([
-            &format!("limit:{}", ch.kind.name()),
-            &num(ch.limit),
-            "",
-            unit,
-        ])
-        .map_err(ser)?;
-        w.write_record([
-            format!("pass:{}", ch.kind.name()).as_str(),
-            if ch.pass { "1" } else { "0" },
-            "",
-            "",
-        ])
-        .map_err(ser)?;
-    }
-    w.write_record([
-        "verdict",
-        if outcome.pass { "pass" } else { "fail" },
-        "",
-        "",
-    ])
-    .map_err(ser)?;
-    let bytes = w.into_inner().map_err(|e| Error::Numerical {
-        what: "CSV output",
-        detail: e.to_string(),
-    })?;
-    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }

@@ -16,7 +16,7 @@ pub mod plot;
 pub mod sweep;
 pub mod verify;
 pub mod write;
-pub use check::{csv, human, json, scene};
+pub use check::{human, json, scene};
 pub use sweep::{SWEEP, sweep};
 pub use write::{is_broken_pipe, stdout, write_file, write_with};
 
@@ -25,6 +25,15 @@ pub const SCHEMA_VERSION: u32 = 1;
 
 /// The JSON Schema of `coatcheck check --format json` for one scene.
 pub const CHECK_SCHEMA: &str = include_str!("schema/check.schema.json");
+/// The JSON Schema of a batch (`coatcheck check DIR --format json`); its `record` is also the
+/// shape of every `check --format csv` row.
+pub const BATCH_SCHEMA: &str = include_str!("schema/batch.schema.json");
+/// The JSON Schema of `coatcheck verify --format json`.
+pub const VERIFY_SCHEMA: &str = include_str!("schema/verify.schema.json");
+/// The JSON Schema of `coatcheck psd --format json`.
+pub const PSD_SCHEMA: &str = include_str!("schema/psd.schema.json");
+/// The JSON Schema of `coatcheck response --format json`.
+pub const RESPONSE_SCHEMA: &str = include_str!("schema/response.schema.json");
 
 /// Output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

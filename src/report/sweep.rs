@@ -99,7 +99,14 @@ pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
                     Value::Object(m)
                 })
                 .collect();
-            Ok(format!("{:#}\n", json!({ "sweep": list })))
+            Ok(format!(
+                "{:#}\n",
+                json!({
+                    "schema_version": super::SCHEMA_VERSION,
+                    "coatcheck_version": env!("CARGO_PKG_VERSION"),
+                    "sweep": list,
+                })
+            ))
         }
         Format::Csv => {
             let mut w = csv::Writer::from_writer(Vec::new());

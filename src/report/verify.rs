@@ -3,7 +3,7 @@
 //! (tables in MPa with 4 significant digits like the check's report, JSON, CSV rows).
 
 use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
-use crate::bem::{BemSolution, FieldStats, InterfaceFields, Surface};
+use crate::bem::{BemSolution, Convergence, FieldStats, InterfaceFields, Surface};
 use crate::check::Evaluation;
 use crate::error::Error;
 use crate::layer::Stack;
@@ -117,35 +117,43 @@ pub fn verify_table(i: &VerifyInputs, c: &Comparison) -> String {
     )
 }
 
+/// The boundary-element solver's convergence (lengths in m), as `verify` and `check --verify`
+/// write it.
+fn solver_json(c: &Convergence, seconds: f64) -> Value {
+    json!({
+        "iterations": c.iterations,
+        "restarts": c.restarts,
+        "gap_rms_in_contact_m": c.gap_rms_in_contact,
+        "max_penetration_m": c.max_penetration,
+        "tolerance_m": c.tolerance,
+        "load_error": c.load_error,
+        "status": c.status,
+        "seconds": seconds,
+    })
+}
+
 /// `coatcheck verify`'s JSON object.
 pub fn verify_json(i: &VerifyInputs, c: &Comparison) -> Value {
     let (surface, sol, fields, theory) = (&c.surface, &c.solution, &c.fields, &c.persson);
     let (d, p0, bond, above, rows) = (i.stack.thickness, i.p0, i.bond, c.above_bond, &c.rows);
     let (xi, seconds) = (surface.rms_slope(), c.seconds);
     json!({
+        "schema_version": super::SCHEMA_VERSION,
+        "coatcheck_version": env!("CARGO_PKG_VERSION"),
         "map": i.map.display().to_string(),
         "nx": surface.nx, "ny": surface.ny, "dx_m": surface.dx, "dy_m": surface.dy,
         "h_rms_m": sol.h_rms, "rms_slope": xi, "q_low_per_m": surface.q_low(),
         "q_low_d": surface.q_low() * d,
         "thickness_m": d, "pressure_pa": p0,
-        "solver": {
-            "iterations": sol.convergence.iterations,
-            "restarts": sol.convergence.restarts,
-            "gap_rms_in_contact_m": sol.convergence.gap_rms_in_contact,
-            "max_penetration_m": sol.convergence.max_penetration,
-            "tolerance_m": sol.convergence.tolerance,
-            "load_error": sol.convergence.load_error,
-            "status": sol.convergence.status,
-            "seconds": seconds,
-        },
+        "solver": solver_json(&sol.convergence, seconds),
         "area_fraction": sol.area_fraction.value,
         "area_fraction_err": sol.area_fraction.err,
         "persson_area_fraction": theory.area_fraction.value,
         "persson_area_fraction_err": theory.area_fraction.err,
         "sigma_rms_top_pa": sol.sigma_rms_top,
-        "contact_pressure": stats_json(&sol.contact_pressure),
-        "interface_normal": stats_json(&fields.normal_stats),
-        "interface_shear_abs": stats_json(&fields.shear_stats),
+        "contact_pressure_pa": stats_json(&sol.contact_pressure),
+        "interface_normal_pa": stats_json(&fields.normal_stats),
+        "interface_shear_abs_pa": stats_json(&fields.shear_stats),
         "bond_strength_pa": bond,
         "shear_fraction_above_bond": above,
         "comparison": rows.iter().map(|r| json!({
@@ -281,40 +289,16 @@ pub fn check_json(map: &Path, ev: &Evaluation, v: &Verification) -> Value {
                 .iter()
                 .map(|c| json!({
                     "name": c.kind.name(), "value": c.value.value, "value_err": c.value.err,
-                    "limit": c.limit, "margin": c.margin, "pass": c.pass, "resolved": c.resolved,
+                    "unit": "Pa", "limit": c.limit, "utilisation": 1.0 - c.margin,
+                    "margin": c.margin, "pass": c.pass, "resolved": c.resolved,
                 }))
                 .collect::<Vec<_>>()
         ),
     );
-    m.insert("solver".into(), json!(v.convergence));
-    m.insert("seconds".into(), json!(v.seconds));
+    m.insert("solver".into(), solver_json(&v.convergence, v.seconds));
     m.insert(
         "verdict".into(),
         json!(if v.pass { "pass" } else { "fail" }),
     );
     Value::Object(m)
-}
-
-/// The `check --verify` section as CSV rows (`verify:<key>,value,err,unit`), no header.
-pub fn check_csv(ev: &Evaluation, v: &Verification) -> String {
-    let mut out = String::new();
-    for r in check_rows(ev, v) {
-        let (key, e) = (r.key, r.exact);
-        let (key, unit) = key.strip_suffix("_pa").map_or((key, "1"), |k| (k, "Pa"));
-        out += &format!("verify:{key},{:e},{:e},{unit}\n", e.value, e.err);
-    }
-    for c in &v.checks {
-        let name = c.kind.name();
-        out += &format!(
-            "verify:check:{name},{:e},{:e},Pa\n",
-            c.value.value, c.value.err
-        );
-        out += &format!("verify:limit:{name},{:e},,Pa\n", c.limit);
-        out += &format!("verify:pass:{name},{},,\n", u8::from(c.pass));
-    }
-    out += &format!(
-        "verify:verdict,{},,\n",
-        if v.pass { "pass" } else { "fail" }
-    );
-    out
 }
