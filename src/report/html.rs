@@ -556,7 +556,7 @@ fn section_html(s: &Section, level: u8) -> String {
         );
     }
     if !s.levers.is_empty() {
-        out += &h(level + 1, "What would make it pass");
+        out += &h(level + 1, "What alone would make it pass");
         out += &list("levers", &s.levers);
     }
     if !s.warnings.is_empty() {

@@ -28,6 +28,8 @@ pub const CHECK_SCHEMA: &str = include_str!("schema/check.schema.json");
 /// The JSON Schema of a batch (`coatcheck check DIR --format json`); its `record` is also the
 /// shape of every `check --format csv` row.
 pub const BATCH_SCHEMA: &str = include_str!("schema/batch.schema.json");
+/// The JSON Schema of `coatcheck check --sweep-thickness --format json`.
+pub const SWEEP_SCHEMA: &str = include_str!("schema/sweep.schema.json");
 /// The JSON Schema of `coatcheck verify --format json`.
 pub const VERIFY_SCHEMA: &str = include_str!("schema/verify.schema.json");
 /// The JSON Schema of `coatcheck psd --format json`.

@@ -203,8 +203,8 @@ fn check_one_scene_json_and_csv() {
     }
 }
 
-/// `check --sweep-thickness`: the CSV columns are `thickness_m` and the sweep keys, each row
-/// the JSON's.
+/// `check --sweep-thickness`: JSON by its schema; the CSV columns are `thickness_m` and the
+/// sweep keys, each row the JSON's.
 #[test]
 fn check_sweep_json_and_csv() {
     let base = [
@@ -220,6 +220,7 @@ fn check_sweep_json_and_csv() {
         a
     };
     let j = json(&out(&with("json")));
+    valid(&schema(coatcheck::report::SWEEP_SCHEMA), &j, "sweep JSON");
     let (head, rows) = parse_csv(&out(&with("csv")).stdout);
     let mut want_head = vec!["thickness_m".to_string()];
     want_head.extend(

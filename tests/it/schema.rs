@@ -201,3 +201,43 @@ fn materials_json_lists_every_file_with_its_source() {
         assert!(!b["source"].as_str().unwrap().is_empty());
     }
 }
+
+/// Every schema shipped in `src/report/schema/` is exported by the library (and so exercised
+/// against real output: check above, batch, sweep, verify, psd and response in
+/// tests/it/formats.rs),
+/// and each is a draft 2020-12 object with an `$id` naming its file.
+#[test]
+fn every_shipped_schema_is_exported_and_well_formed() {
+    use coatcheck::report::{
+        BATCH_SCHEMA, CHECK_SCHEMA, PSD_SCHEMA, RESPONSE_SCHEMA, SWEEP_SCHEMA, VERIFY_SCHEMA,
+    };
+    let exported = [
+        ("check", CHECK_SCHEMA),
+        ("batch", BATCH_SCHEMA),
+        ("verify", VERIFY_SCHEMA),
+        ("psd", PSD_SCHEMA),
+        ("response", RESPONSE_SCHEMA),
+        ("sweep", SWEEP_SCHEMA),
+    ];
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src/report/schema");
+    let mut files: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    let mut want: Vec<String> = exported
+        .iter()
+        .map(|(n, _)| format!("{n}.schema.json"))
+        .collect();
+    want.sort();
+    assert_eq!(files, want);
+    for (name, text) in exported {
+        let s: Value = serde_json::from_str(text).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(s["$schema"], "https://json-schema.org/draft/2020-12/schema");
+        assert_eq!(s["$id"], format!("coatcheck/{name}.schema.json"));
+        assert!(
+            s["title"].as_str().is_some_and(|t| t.contains(name)),
+            "{name}"
+        );
+    }
+}
