@@ -34,6 +34,8 @@ pub const SWEEP_SCHEMA: &str = include_str!("schema/sweep.schema.json");
 pub const VERIFY_SCHEMA: &str = include_str!("schema/verify.schema.json");
 /// The JSON Schema of `coatcheck psd --format json`.
 pub const PSD_SCHEMA: &str = include_str!("schema/psd.schema.json");
+/// The JSON Schema of `coatcheck materials --format json`.
+pub const MATERIALS_SCHEMA: &str = include_str!("schema/materials.schema.json");
 /// The JSON Schema of `coatcheck response --format json`.
 pub const RESPONSE_SCHEMA: &str = include_str!("schema/response.schema.json");
 
