@@ -114,13 +114,13 @@ fn main() {
     rows.push((
         "report: tables".into(),
         time(reps, || {
-            report::human(&scene, &outcome);
+            report::human(&scene, &outcome, &[]);
         }),
     ));
     rows.push((
         "report: JSON".into(),
         time(reps, || {
-            report::json(&scene, &outcome).to_string();
+            report::json(&scene, &outcome, &[]).to_string();
         }),
     ));
 

@@ -8,6 +8,7 @@
 //! governing check.
 
 use crate::bem::{BemSettings, Surface};
+use crate::check::levers::{Lever, levers};
 use crate::check::{CheckKind, Checker, Outcome};
 use crate::error::Error;
 use crate::scene::{RoughnessSource, Scene};
@@ -23,6 +24,7 @@ use std::path::{Path, PathBuf};
 pub struct FileVerdict {
     pub path: PathBuf,
     pub pass: bool,
+    #[serde(rename = "governing_check")]
     pub governing: Option<CheckKind>,
     pub margin: Option<f64>,
 }
@@ -48,6 +50,8 @@ pub struct Judged {
     pub warnings: Vec<String>,
     /// The exact check, when asked for.
     pub exact: Option<Exact>,
+    /// What alone would make a failing design pass (empty when it passes).
+    pub levers: Vec<Lever>,
 }
 
 impl Judged {
@@ -169,6 +173,12 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
         .transpose()?;
     outcome.warnings.extend(exact_warnings.iter().cloned());
     warnings.extend(exact_warnings);
+    let levers = if outcome.pass {
+        Vec::new()
+    } else {
+        let (spectrum, _) = scene.roughness.spectrum()?;
+        levers(&spectrum, &scene.design(), scene.settings, &outcome)?
+    };
     Ok(Judged {
         scene,
         outcome,
@@ -176,6 +186,7 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
         read_warnings,
         warnings,
         exact,
+        levers,
     })
 }
 

@@ -6,11 +6,11 @@
 
 use coatcheck::Error;
 use coatcheck::psd::abel::Conversion;
+use coatcheck::report::{sig, table, um};
 use coatcheck::topography::io::HeightKind;
 use coatcheck::topography::spectrum::{Detrend, PsdOptions, TopographyPsd, Window};
 use coatcheck::topography::{FileInfo, HeightFileOptions, psd_of_file};
 use coatcheck::units::{Dim, parse_quantity};
-use comfy_table::Table;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -227,39 +227,31 @@ fn write_csv(
     Ok(())
 }
 
+/// The summary as CSV, `quantity,value,unit`, the quantities named as in the JSON's `summary`.
 fn write_summary_csv(w: &mut dyn Write, r: &TopographyPsd) -> std::io::Result<()> {
     let s = r.summary;
     writeln!(w, "quantity,value,unit")?;
-    writeln!(w, "h_rms,{:e},m", s.h_rms)?;
-    writeln!(w, "h_rms_kept,{:e},m", s.h_rms_kept)?;
-    writeln!(w, "rms_slope,{:e},", s.rms_slope)?;
-    writeln!(w, "rms_curvature,{:e},1/m", s.rms_curvature)?;
-    writeln!(w, "q_min,{:e},1/m", s.q_min)?;
-    writeln!(w, "q_max,{:e},1/m", s.q_max)?;
-    writeln!(w, "outside_fraction,{:e},", s.outside_fraction)
-}
-
-/// A length in a readable unit, 4 significant digits.
-fn human_length(m: f64) -> String {
-    let (v, u) = if m >= 1e-3 {
-        (m * 1e3, "mm")
-    } else if m >= 1e-6 {
-        (m * 1e6, "µm")
-    } else {
-        (m * 1e9, "nm")
-    };
-    format!("{v:.4} {u}")
+    for (key, value, unit) in [
+        ("h_rms_m", s.h_rms, "m"),
+        ("h_rms_kept_m", s.h_rms_kept, "m"),
+        ("rms_slope", s.rms_slope, "1"),
+        ("rms_curvature_per_m", s.rms_curvature, "1/m"),
+        ("q_min_per_m", s.q_min, "1/m"),
+        ("q_max_per_m", s.q_max, "1/m"),
+        ("outside_fraction", s.outside_fraction, "1"),
+    ] {
+        writeln!(w, "{key},{value:e},{unit}")?;
+    }
+    Ok(())
 }
 
 fn summary_table(input: &str, info: &FileInfo, r: &TopographyPsd, out: Option<&PathBuf>) -> String {
     let s = r.summary;
-    let mut steps = Table::new();
-    steps.set_header(vec!["step"]);
+    let mut steps = table(&["step"]);
     for st in &r.steps {
         steps.add_row(vec![st.clone()]);
     }
-    let mut t = Table::new();
-    t.set_header(vec!["quantity", "value"]);
+    let mut t = table(&["quantity", "value"]);
     t.add_row(vec![
         "input".to_string(),
         format!(
@@ -297,27 +289,24 @@ fn summary_table(input: &str, info: &FileInfo, r: &TopographyPsd, out: Option<&P
     }
     t.add_row(vec![
         "h_rms (all wavelengths)".into(),
-        human_length(s.h_rms),
+        format!("{} µm", um(s.h_rms)),
     ]);
     t.add_row(vec![
         "h_rms (kept q-range)".into(),
-        human_length(s.h_rms_kept),
+        format!("{} µm", um(s.h_rms_kept)),
     ]);
-    t.add_row(vec![
-        "rms slope (kept)".into(),
-        format!("{:.4}", s.rms_slope),
-    ]);
+    t.add_row(vec!["rms slope (kept)".into(), sig(s.rms_slope, 4)]);
     t.add_row(vec![
         "rms curvature (kept)".into(),
-        format!("{:.4} 1/µm", s.rms_curvature * 1e-6),
+        format!("{} 1/µm", sig(s.rms_curvature * 1e-6, 4)),
     ]);
     t.add_row(vec![
         "kept q-range".into(),
-        format!("{:.4e} – {:.4e} 1/m", s.q_min, s.q_max),
+        format!("{} – {} 1/m", sig(s.q_min, 4), sig(s.q_max, 4)),
     ]);
     t.add_row(vec![
         "share of h_rms² outside".into(),
-        format!("{:.3} %", 100.0 * s.outside_fraction),
+        format!("{} %", sig(100.0 * s.outside_fraction, 3)),
     ]);
     t.add_row(vec![
         "PSD points".into(),
@@ -334,8 +323,12 @@ fn summary_table(input: &str, info: &FileInfo, r: &TopographyPsd, out: Option<&P
     format!("{steps}\n{t}{warnings}")
 }
 
+/// The JSON object (schema `src/report/schema/psd.schema.json`; SI, the unit in each key).
 fn json(input: &str, info: &FileInfo, r: &TopographyPsd) -> serde_json::Value {
+    let s = r.summary;
     serde_json::json!({
+        "schema_version": coatcheck::report::SCHEMA_VERSION,
+        "coatcheck_version": env!("CARGO_PKG_VERSION"),
         "input": input,
         "kind": if info.kind == HeightKind::Map { "map" } else { "lines" },
         "format": info.format,
@@ -350,9 +343,17 @@ fn json(input: &str, info: &FileInfo, r: &TopographyPsd) -> serde_json::Value {
         "filled_fraction": info.filled_fraction,
         "steps": r.steps,
         "warnings": info.warnings,
-        "summary": r.summary,
-        "q": r.c2d.q(),
-        "c": r.c2d.c_values(),
-        "c1d": r.c1d.as_ref().map(|t| t.c_values()),
+        "summary": {
+            "h_rms_m": s.h_rms,
+            "h_rms_kept_m": s.h_rms_kept,
+            "rms_slope": s.rms_slope,
+            "rms_curvature_per_m": s.rms_curvature,
+            "q_min_per_m": s.q_min,
+            "q_max_per_m": s.q_max,
+            "outside_fraction": s.outside_fraction,
+        },
+        "q_per_m": r.c2d.q(),
+        "c_m4": r.c2d.c_values(),
+        "c1d_m3": r.c1d.as_ref().map(|t| t.c_values()),
     })
 }

@@ -6,7 +6,6 @@ use coatcheck::Error;
 use coatcheck::layer::{Bilayer, Elastic};
 use coatcheck::prec::KERNEL_RTOL;
 use coatcheck::units::{Dim, parse_quantity};
-use comfy_table::{Table, presets::UTF8_FULL};
 
 #[derive(Clone, Copy, ValueEnum)]
 pub enum Format {
@@ -107,8 +106,7 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
         qd.iter().map(|&x| (x, pair.response(x))).collect();
     let text = match args.format {
         Format::Table => {
-            let mut t = Table::new();
-            t.load_preset(UTF8_FULL).set_header(["q·d", "S", "f", "g"]);
+            let mut t = coatcheck::report::table(&["q·d", "S", "f", "g"]);
             for (x, r) in &rows {
                 t.add_row([
                     format!("{x:.4e}"),
@@ -117,11 +115,12 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
                     format!("{:.10e}", r.g),
                 ]);
             }
-            format!(
-                "{t}\nerror estimate: relative {KERNEL_RTOL:e} for each of S, f, g (the bound \
+            let note = coatcheck::report::wrap(&format!(
+                "error estimate: relative {KERNEL_RTOL:e} for each of S, f, g (the bound \
                  verified against a 100-digit solution over qd 1e-8..1e4, E0/E1 1e-8..1e8, nu \
-                 0..0.5)\n"
-            )
+                 0..0.5)"
+            ));
+            format!("{t}\n{note}\n")
         }
         Format::Csv => {
             let mut text = String::from("qd,S,S_err,f,f_err,g,g_err\n");

@@ -116,13 +116,18 @@ pub fn run(a: SynthArgs) -> Result<i32, Error> {
             "the height map".to_string()
         }
     };
+    let um = coatcheck::report::um;
     coatcheck::report::stdout(&format!(
-        "wrote {what} a {} x {} map of {:e} m pixels (rms height {:e} m) to {}\n{note}\n",
-        map.nx,
-        map.ny,
-        map.dx,
-        map.rms(),
-        a.output.display()
+        "{}\n{}\n",
+        coatcheck::report::wrap(&format!(
+            "wrote {what} a {} x {} map of {} µm pixels (rms height {} µm) to {}",
+            map.nx,
+            map.ny,
+            um(map.dx),
+            um(map.rms()),
+            a.output.display()
+        )),
+        coatcheck::report::wrap(&note)
     ))?;
     Ok(0)
 }

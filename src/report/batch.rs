@@ -2,102 +2,184 @@
 //! summary table with failures first, and the per-file table of a scene with several roughness
 //! files.
 
-use super::sig;
+use super::{margin_cell, sig, table, utilisation_cell, wrap};
 use crate::batch::{SceneRun, Totals};
 use crate::check::CheckKind;
+use crate::check::levers::Lever;
 use crate::error::Error;
 use crate::pipeline::{Judged, governing_margin};
-use comfy_table::{Table, presets::UTF8_FULL_CONDENSED};
+use crate::prec::Estimate;
 use serde::Serialize;
+use std::ops::Not;
+use std::path::Path;
 
-/// One check of a scene in a record.
+/// One check of a scene in a record (the shape of `checks[]` in the check's JSON).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CheckRecord {
     pub name: &'static str,
-    /// Pa for stresses, m for min-thickness.
+    /// Pa for stresses, m for min-thickness ([`CheckRecord::unit`]).
     pub value: f64,
     pub value_err: f64,
+    pub unit: &'static str,
     pub limit: Option<f64>,
+    /// value/limit (d_min/d for the thickness): 1 − margin.
+    pub utilisation: Option<f64>,
     pub margin: Option<f64>,
     pub pass: bool,
 }
 
-/// One scene of a batch as a flat record (JSON, CSV, Parquet). SI units.
+/// One scene as a flat record (batch JSON, and the rows of every `check --format csv` and of
+/// Parquet). SI units; the keys are those of the check's JSON.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct Record {
     pub scene: String,
-    /// `pass`, `fail` or `error`.
+    /// `pass`, `fail` or `error` (with `--verify`: both Persson's and the exact checks).
     pub verdict: &'static str,
     pub governing_check: Option<&'static str>,
+    /// Utilisation of the governing check (value/limit; > 1 fails).
+    pub utilisation: Option<f64>,
     /// Margin of the governing check (unused fraction of its limit; < 0 fails).
     pub margin: Option<f64>,
     pub thickness_m: Option<f64>,
+    pub pressure_pa: Option<f64>,
+    /// h_rms of the spectrum the scene was judged with, m.
+    pub h_rms_m: Option<f64>,
+    /// rms slope of that spectrum.
+    pub rms_slope: Option<f64>,
     pub min_thickness_m: Option<f64>,
-    pub min_thickness_err_m: Option<f64>,
+    pub min_thickness_m_err: Option<f64>,
     pub area_fraction: Option<f64>,
+    pub area_fraction_err: Option<f64>,
     pub mean_contact_pressure_pa: Option<f64>,
+    pub mean_contact_pressure_pa_err: Option<f64>,
+    pub sigma_rms_top_pa: Option<f64>,
+    pub sigma_rms_top_pa_err: Option<f64>,
+    pub sigma_rms_interface_pa: Option<f64>,
+    pub sigma_rms_interface_pa_err: Option<f64>,
+    pub tau_rms_interface_pa: Option<f64>,
+    pub tau_rms_interface_pa_err: Option<f64>,
     pub tau_peak_pa: Option<f64>,
+    pub tau_peak_pa_err: Option<f64>,
     pub sigma_peak_interface_pa: Option<f64>,
+    pub sigma_peak_interface_pa_err: Option<f64>,
+    pub e_eff_over_e_film: Option<f64>,
+    pub e_eff_over_e_film_err: Option<f64>,
     /// The worst roughness file when the scene lists several.
     pub worst_file: Option<String>,
     /// How many roughness files the scene was judged on (0 when it could not be evaluated).
     pub files: usize,
     pub checks: Vec<CheckRecord>,
+    /// What alone would make a failing design pass.
+    pub levers: Vec<Lever>,
+    /// The exact check's verdict and values (`check --verify`).
+    pub verify_verdict: Option<&'static str>,
+    pub verify_area_fraction: Option<f64>,
+    pub verify_mean_contact_pressure_pa: Option<f64>,
+    pub verify_tau_peak_pa: Option<f64>,
+    pub verify_sigma_peak_interface_pa: Option<f64>,
     pub warnings: Vec<String>,
     /// Why the scene could not be evaluated.
     pub error: Option<String>,
     pub seconds: f64,
 }
 
+/// Value and error of an estimate, each `None` when the estimate is.
+fn split(e: Option<Estimate>) -> (Option<f64>, Option<f64>) {
+    (e.map(|e| e.value), e.map(|e| e.err))
+}
+
 impl Record {
     pub fn of(run: &SceneRun) -> Self {
+        match &run.result {
+            Err(e) => Record {
+                scene: run.file.display().to_string(),
+                verdict: run.verdict(),
+                seconds: run.seconds,
+                error: Some(e.to_string()),
+                ..Record::default()
+            },
+            Ok(j) => Record::judged(&run.file, j, run.seconds),
+        }
+    }
+
+    /// The record of a judged scene.
+    pub fn judged(file: &Path, j: &Judged, seconds: f64) -> Self {
+        let o = &j.outcome;
+        let ev = &o.evaluation;
+        let c = &ev.contact;
         let mut r = Record {
-            scene: run.file.display().to_string(),
-            verdict: run.verdict(),
-            seconds: run.seconds,
+            scene: file.display().to_string(),
+            verdict: if j.pass() { "pass" } else { "fail" },
+            seconds,
+            governing_check: o.governing.map(CheckKind::name),
+            margin: governing_margin(o),
+            utilisation: governing_margin(o).map(|m| 1.0 - m),
+            thickness_m: Some(o.thickness),
+            pressure_pa: Some(j.scene.pressure),
+            h_rms_m: Some(o.h_rms),
+            rms_slope: Some(o.rms_slope),
+            worst_file: j.worst_file().map(|p| p.display().to_string()),
+            files: j.files.len().max(1),
+            levers: j.levers.clone(),
+            warnings: j.warnings.clone(),
             ..Record::default()
         };
-        match &run.result {
-            Err(e) => r.error = Some(e.to_string()),
-            Ok(j) => {
-                let o = &j.outcome;
-                let ev = &o.evaluation;
-                r.governing_check = o.governing.map(CheckKind::name);
-                r.margin = governing_margin(o);
-                r.thickness_m = Some(o.thickness);
-                let dmin = o.min_thickness.as_ref().and_then(|m| m.thickness);
-                r.min_thickness_m = dmin.map(|d| d.value);
-                r.min_thickness_err_m = dmin.map(|d| d.err);
-                r.area_fraction = Some(ev.contact.area_fraction.value);
-                r.mean_contact_pressure_pa = Some(ev.mean_contact_pressure.value);
-                r.tau_peak_pa = ev.tau_peak.map(|e| e.value);
-                r.sigma_peak_interface_pa = ev.sigma_peak_interface.map(|e| e.value);
-                r.worst_file = j.worst_file().map(|p| p.display().to_string());
-                r.files = j.files.len().max(1);
-                r.checks = o
-                    .checks
-                    .iter()
-                    .map(|c| CheckRecord {
-                        name: c.kind.name(),
-                        value: c.value.value,
-                        value_err: c.value.err,
-                        limit: c.limit,
-                        margin: c.margin,
-                        pass: c.pass,
-                    })
-                    .collect();
-                r.warnings = j.warnings.clone();
-            }
+        (r.min_thickness_m, r.min_thickness_m_err) =
+            split(o.min_thickness.as_ref().and_then(|m| m.thickness));
+        (r.area_fraction, r.area_fraction_err) = split(Some(c.area_fraction));
+        (r.mean_contact_pressure_pa, r.mean_contact_pressure_pa_err) =
+            split(Some(ev.mean_contact_pressure));
+        (r.sigma_rms_top_pa, r.sigma_rms_top_pa_err) = split(c.sigma_rms_top);
+        (r.sigma_rms_interface_pa, r.sigma_rms_interface_pa_err) = split(c.sigma_rms_interface);
+        (r.tau_rms_interface_pa, r.tau_rms_interface_pa_err) = split(c.tau_rms_interface);
+        (r.tau_peak_pa, r.tau_peak_pa_err) = split(ev.tau_peak);
+        (r.sigma_peak_interface_pa, r.sigma_peak_interface_pa_err) = split(ev.sigma_peak_interface);
+        (r.e_eff_over_e_film, r.e_eff_over_e_film_err) = split(c.e_eff_over_e_film);
+        r.checks = o
+            .checks
+            .iter()
+            .map(|c| CheckRecord {
+                name: c.kind.name(),
+                value: c.value.value,
+                value_err: c.value.err,
+                unit: if c.kind == CheckKind::MinThickness {
+                    "m"
+                } else {
+                    "Pa"
+                },
+                limit: c.limit,
+                utilisation: c.margin.map(|m| 1.0 - m),
+                margin: c.margin,
+                pass: c.pass,
+            })
+            .collect();
+        if let Some(x) = &j.exact {
+            let v = &x.verification;
+            r.verify_verdict = Some(if v.pass { "pass" } else { "fail" });
+            r.verify_area_fraction = Some(v.area_fraction.value);
+            r.verify_mean_contact_pressure_pa = Some(v.mean_contact_pressure.value);
+            r.verify_tau_peak_pa = Some(v.tau_peak.value.value);
+            r.verify_sigma_peak_interface_pa = Some(v.sigma_peak_interface.value.value);
         }
         r
     }
 
+    /// One check, if it ran.
+    pub fn check(&self, kind: CheckKind) -> Option<&CheckRecord> {
+        self.checks.iter().find(|c| c.name == kind.name())
+    }
+
     /// The margin of one check, if it ran.
     pub fn check_margin(&self, kind: CheckKind) -> Option<f64> {
-        self.checks
+        self.check(kind).and_then(|c| c.margin)
+    }
+
+    /// The threshold of one lever, if the design fails and a value in range passes.
+    pub fn lever(&self, name: &str) -> Option<f64> {
+        self.levers
             .iter()
-            .find(|c| c.name == kind.name())
-            .and_then(|c| c.margin)
+            .find(|l| l.name == name)
+            .and_then(|l| l.value)
     }
 }
 
@@ -112,34 +194,130 @@ pub enum Cell {
 /// The flat columns of a record: name and getter (CSV and Parquet share them).
 pub type Column = (&'static str, fn(&Record) -> Cell);
 
-pub const COLUMNS: &[Column] = &[
+/// The cells of one check: value, limit, utilisation, margin, pass.
+macro_rules! check_columns {
+    ($kind:expr, $value:literal, $limit:literal, $used:literal, $margin:literal, $pass:literal) => {
+        [
+            ($value, |r: &Record| {
+                Cell::Number(r.check($kind).map(|c| c.value))
+            }),
+            ($limit, |r: &Record| {
+                Cell::Number(r.check($kind).and_then(|c| c.limit))
+            }),
+            ($used, |r: &Record| {
+                Cell::Number(r.check($kind).and_then(|c| c.utilisation))
+            }),
+            ($margin, |r: &Record| Cell::Number(r.check_margin($kind))),
+            ($pass, |r: &Record| {
+                Cell::Text(r.check($kind).map(|c| c.pass.to_string()))
+            }),
+        ]
+    };
+}
+
+const BOND: [Column; 5] = check_columns!(
+    CheckKind::BondShear,
+    "bond_shear_value_pa",
+    "bond_shear_limit_pa",
+    "bond_shear_utilisation",
+    "bond_shear_margin",
+    "bond_shear_pass"
+);
+const YIELD: [Column; 5] = check_columns!(
+    CheckKind::SubstrateYield,
+    "substrate_yield_value_pa",
+    "substrate_yield_limit_pa",
+    "substrate_yield_utilisation",
+    "substrate_yield_margin",
+    "substrate_yield_pass"
+);
+const THICKNESS: [Column; 5] = check_columns!(
+    CheckKind::MinThickness,
+    "min_thickness_value_m",
+    "min_thickness_limit_m",
+    "min_thickness_utilisation",
+    "min_thickness_margin",
+    "min_thickness_pass"
+);
+
+const HEAD: &[Column] = &[
     ("scene", |r| Cell::Text(Some(r.scene.clone()))),
     ("verdict", |r| Cell::Text(Some(r.verdict.into()))),
     ("governing_check", |r| {
         Cell::Text(r.governing_check.map(Into::into))
     }),
+    ("utilisation", |r| Cell::Number(r.utilisation)),
     ("margin", |r| Cell::Number(r.margin)),
     ("thickness_m", |r| Cell::Number(r.thickness_m)),
+    ("pressure_pa", |r| Cell::Number(r.pressure_pa)),
+    ("h_rms_m", |r| Cell::Number(r.h_rms_m)),
+    ("rms_slope", |r| Cell::Number(r.rms_slope)),
     ("min_thickness_m", |r| Cell::Number(r.min_thickness_m)),
-    ("min_thickness_err_m", |r| {
-        Cell::Number(r.min_thickness_err_m)
+    ("min_thickness_m_err", |r| {
+        Cell::Number(r.min_thickness_m_err)
     }),
     ("area_fraction", |r| Cell::Number(r.area_fraction)),
+    ("area_fraction_err", |r| Cell::Number(r.area_fraction_err)),
     ("mean_contact_pressure_pa", |r| {
         Cell::Number(r.mean_contact_pressure_pa)
     }),
+    ("mean_contact_pressure_pa_err", |r| {
+        Cell::Number(r.mean_contact_pressure_pa_err)
+    }),
+    ("sigma_rms_top_pa", |r| Cell::Number(r.sigma_rms_top_pa)),
+    ("sigma_rms_top_pa_err", |r| {
+        Cell::Number(r.sigma_rms_top_pa_err)
+    }),
+    ("sigma_rms_interface_pa", |r| {
+        Cell::Number(r.sigma_rms_interface_pa)
+    }),
+    ("sigma_rms_interface_pa_err", |r| {
+        Cell::Number(r.sigma_rms_interface_pa_err)
+    }),
+    ("tau_rms_interface_pa", |r| {
+        Cell::Number(r.tau_rms_interface_pa)
+    }),
+    ("tau_rms_interface_pa_err", |r| {
+        Cell::Number(r.tau_rms_interface_pa_err)
+    }),
     ("tau_peak_pa", |r| Cell::Number(r.tau_peak_pa)),
+    ("tau_peak_pa_err", |r| Cell::Number(r.tau_peak_pa_err)),
     ("sigma_peak_interface_pa", |r| {
         Cell::Number(r.sigma_peak_interface_pa)
     }),
-    ("bond_shear_margin", |r| {
-        Cell::Number(r.check_margin(CheckKind::BondShear))
+    ("sigma_peak_interface_pa_err", |r| {
+        Cell::Number(r.sigma_peak_interface_pa_err)
     }),
-    ("substrate_yield_margin", |r| {
-        Cell::Number(r.check_margin(CheckKind::SubstrateYield))
+    ("e_eff_over_e_film", |r| Cell::Number(r.e_eff_over_e_film)),
+    ("e_eff_over_e_film_err", |r| {
+        Cell::Number(r.e_eff_over_e_film_err)
     }),
-    ("min_thickness_margin", |r| {
-        Cell::Number(r.check_margin(CheckKind::MinThickness))
+];
+
+const TAIL: &[Column] = &[
+    ("lever_thickness_m", |r| Cell::Number(r.lever("thickness"))),
+    ("lever_bond_strength_pa", |r| {
+        Cell::Number(r.lever("bond_strength"))
+    }),
+    ("lever_yield_strength_pa", |r| {
+        Cell::Number(r.lever("yield_strength"))
+    }),
+    ("lever_pressure_pa", |r| Cell::Number(r.lever("pressure"))),
+    ("lever_low_octave_rms_m", |r| {
+        Cell::Number(r.lever("low_octave_rms"))
+    }),
+    ("verify_verdict", |r| {
+        Cell::Text(r.verify_verdict.map(Into::into))
+    }),
+    ("verify_area_fraction", |r| {
+        Cell::Number(r.verify_area_fraction)
+    }),
+    ("verify_mean_contact_pressure_pa", |r| {
+        Cell::Number(r.verify_mean_contact_pressure_pa)
+    }),
+    ("verify_tau_peak_pa", |r| Cell::Number(r.verify_tau_peak_pa)),
+    ("verify_sigma_peak_interface_pa", |r| {
+        Cell::Number(r.verify_sigma_peak_interface_pa)
     }),
     ("worst_file", |r| Cell::Text(r.worst_file.clone())),
     ("files", |r| Cell::Count(r.files as u64)),
@@ -150,25 +328,48 @@ pub const COLUMNS: &[Column] = &[
     ("seconds", |r| Cell::Number(Some(r.seconds))),
 ];
 
-/// The batch as JSON: `{"scenes": [records], "totals": {...}}`.
+/// Every flat column, in order: the results, each check's five cells, the levers, the exact
+/// check, then the bookkeeping.
+pub fn columns() -> Vec<Column> {
+    let mut all = HEAD.to_vec();
+    all.extend(BOND);
+    all.extend(YIELD);
+    all.extend(THICKNESS);
+    all.extend_from_slice(TAIL);
+    all
+}
+
+/// The batch as JSON: `{"schema_version", "coatcheck_version", "scenes": [records],
+/// "totals": {...}}`.
 pub fn json(runs: &[SceneRun]) -> String {
     let records: Vec<Record> = runs.iter().map(Record::of).collect();
-    let v = serde_json::json!({ "scenes": records, "totals": Totals::of(runs) });
+    let v = serde_json::json!({
+        "schema_version": super::SCHEMA_VERSION,
+        "coatcheck_version": env!("CARGO_PKG_VERSION"),
+        "scenes": records,
+        "totals": Totals::of(runs),
+    });
     format!("{v:#}\n")
 }
 
-/// The batch as CSV: a header and one row per scene ([`COLUMNS`]).
+/// The batch as CSV: a header and one row per scene ([`columns`]).
 pub fn csv(runs: &[SceneRun]) -> Result<String, Error> {
+    records_csv(&runs.iter().map(Record::of).collect::<Vec<_>>())
+}
+
+/// Records as CSV: a header and one row each ([`columns`]); numbers in Rust's shortest
+/// round-trip form.
+pub fn records_csv(records: &[Record]) -> Result<String, Error> {
     let ser = |e: csv::Error| Error::Numerical {
         what: "CSV output",
         detail: e.to_string(),
     };
+    let columns = columns();
     let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record(COLUMNS.iter().map(|(name, _)| *name))
+    w.write_record(columns.iter().map(|(name, _)| *name))
         .map_err(ser)?;
-    for run in runs {
-        let r = Record::of(run);
-        w.write_record(COLUMNS.iter().map(|(_, get)| match get(&r) {
+    for r in records {
+        w.write_record(columns.iter().map(|(_, get)| match get(r) {
             Cell::Text(t) => t.unwrap_or_default(),
             Cell::Number(x) => x.map(|x| format!("{x:e}")).unwrap_or_default(),
             Cell::Count(n) => n.to_string(),
@@ -182,22 +383,35 @@ pub fn csv(runs: &[SceneRun]) -> Result<String, Error> {
     Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
-/// The summary table: scene, verdict, governing check, margin, d_min, warnings (failures first),
-/// then the errors and warnings in full, then the totals.
+/// The directory every scene file is in, when they share one (shown once above the table so
+/// that the scene column fits).
+fn common_dir(runs: &[SceneRun]) -> Option<&Path> {
+    let first = runs.first()?.file.parent()?;
+    let shared =
+        first.as_os_str().is_empty().not() && runs.iter().all(|r| r.file.parent() == Some(first));
+    shared.then_some(first)
+}
+
+/// The summary table: scene, verdict, governing check, its utilisation and margin, d_min
+/// (failures first), then the errors and warnings in full, then the totals.
 pub fn summary(runs: &[SceneRun], seconds: f64) -> String {
-    let mut t = Table::new();
-    t.load_preset(UTF8_FULL_CONDENSED);
-    t.set_header([
+    let mut t = table(&[
         "scene",
         "verdict",
-        "governing check",
+        "governing",
+        "utilisation",
         "margin",
         "d_min",
-        "warnings",
     ]);
+    let dir = common_dir(runs);
     let mut notes = String::new();
     for run in runs {
-        let mut scene = run.file.display().to_string();
+        let mut scene = match dir {
+            Some(d) => run.file.strip_prefix(d).unwrap_or(&run.file),
+            None => &run.file,
+        }
+        .display()
+        .to_string();
         let verdict = run.verdict().to_uppercase();
         match &run.result {
             Err(e) => {
@@ -209,7 +423,8 @@ pub fn summary(runs: &[SceneRun], seconds: f64) -> String {
                     "-".into(),
                     "-".into(),
                 ]);
-                notes += &format!("error: {e}\n");
+                notes += &wrap(&format!("error: {e}"));
+                notes.push('\n');
             }
             Ok(j) => {
                 if let Some(f) = j.worst_file() {
@@ -217,36 +432,36 @@ pub fn summary(runs: &[SceneRun], seconds: f64) -> String {
                     scene += &format!("\n(worst of {}: {})", j.files.len(), name.display());
                 }
                 let o = &j.outcome;
-                let margin = governing_margin(o)
-                    .map(|m| format!("{:+.1} %", 100.0 * m))
-                    .unwrap_or_else(|| "-".into());
+                let margin = governing_margin(o);
                 let dmin = match &o.min_thickness {
                     None => "-".into(),
                     Some(m) => match m.thickness {
                         None => "none passes".into(),
                         Some(d) if m.all_pass_to_floor => {
-                            format!("<= {} um", sig(d.value * 1e6, 4))
+                            format!("<= {} µm", sig(d.value * 1e6, 4))
                         }
-                        Some(d) => format!("{} um", sig(d.value * 1e6, 4)),
+                        Some(d) => format!("{} µm", sig(d.value * 1e6, 4)),
                     },
                 };
                 t.add_row([
                     scene,
                     verdict,
                     o.governing.map_or("-", CheckKind::name).into(),
-                    margin,
+                    utilisation_cell(margin),
+                    margin_cell(margin),
                     dmin,
-                    j.warnings.len().to_string(),
                 ]);
                 for w in &j.warnings {
-                    notes += &format!("warning: {}: {w}\n", run.file.display());
+                    notes += &wrap(&format!("warning: {}: {w}", run.file.display()));
+                    notes.push('\n');
                 }
             }
         }
     }
     let n = Totals::of(runs);
+    let head = dir.map_or(String::new(), |d| format!("scenes in {}:\n", d.display()));
     format!(
-        "{t}\n{notes}{} scenes: {} passed, {} failed, {} could not be evaluated ({:.2} s)\n",
+        "{head}{t}\n{notes}{} scenes: {} passed, {} failed, {} could not be evaluated ({:.2} s)\n",
         n.scenes, n.pass, n.fail, n.error, seconds
     )
 }
@@ -256,17 +471,20 @@ pub fn files_table(j: &Judged) -> String {
     if j.files.len() < 2 {
         return String::new();
     }
-    let mut t = Table::new();
-    t.load_preset(UTF8_FULL_CONDENSED);
-    t.set_header(["roughness file", "verdict", "governing check", "margin"]);
+    let mut t = table(&[
+        "roughness file",
+        "verdict",
+        "governing check",
+        "utilisation",
+        "margin",
+    ]);
     for f in &j.files {
         t.add_row([
             f.path.display().to_string(),
             if f.pass { "PASS" } else { "FAIL" }.into(),
             f.governing.map_or("-", CheckKind::name).into(),
-            f.margin
-                .map(|m| format!("{:+.1} %", 100.0 * m))
-                .unwrap_or_else(|| "-".into()),
+            utilisation_cell(f.margin),
+            margin_cell(f.margin),
         ]);
     }
     let worst = j

@@ -2,11 +2,14 @@
 //!
 //! The JSON object carries `verdict`, `area_fraction`, `mean_contact_pressure_pa`,
 //! `sigma_rms_top_pa`, `sigma_rms_interface_pa`, `tau_rms_interface_pa`, `tau_peak_pa`,
-//! `sigma_peak_interface_pa`, `e_eff_over_e_film`, `min_thickness_m`, `governing_check` and
-//! `checks`, each numeric result with a sibling `<key>_err` (its numerical error estimate), plus
-//! the inputs and warnings.
+//! `sigma_peak_interface_pa`, `e_eff_over_e_film`, `min_thickness_m`, `governing_check`,
+//! `checks` and `levers` (what alone would make a failing design pass), each numeric result with
+//! a sibling `<key>_err` (its numerical error estimate), plus the inputs and warnings.
 
-use super::{Format, batch, modulus, mpa, sig, table, um, verify};
+use super::{
+    Format, batch, margin_cell, modulus, mpa, sig, table, um, utilisation_cell, verify, wrap,
+};
+use crate::check::levers::Lever;
 use crate::check::{CheckKind, CheckResult, Outcome};
 use crate::error::Error;
 use crate::pipeline::Judged;
@@ -63,7 +66,7 @@ pub(crate) fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
     }
     match r.scale {
         Some(Scale::RmsSlope(x)) => rows.push(("rms slope".into(), sig(x, 4))),
-        Some(Scale::RmsHeight(h)) => rows.push(("rms height".into(), format!("{} um", um(h)))),
+        Some(Scale::RmsHeight(h)) => rows.push(("rms height".into(), format!("{} µm", um(h)))),
         None => {}
     }
     if let Some(q) = r.q_min {
@@ -83,7 +86,7 @@ pub(crate) fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
         ),
     ));
     if let Some(d) = scene.thickness {
-        rows.push(("film thickness".into(), format!("{} um", um(d))));
+        rows.push(("film thickness".into(), format!("{} µm", um(d))));
     }
     let s = &scene.substrate;
     let y = s
@@ -111,6 +114,23 @@ pub(crate) fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
         "nominal pressure p0".into(),
         format!("{} MPa", mpa(scene.pressure)),
     ));
+    for o in &scene.overrides {
+        let show = |x: f64| match o.unit {
+            "Pa" if o.key.ends_with("youngs_modulus") => modulus(x),
+            "Pa" => format!("{} MPa", mpa(x)),
+            _ => sig(x, 4),
+        };
+        rows.push((
+            "override".into(),
+            format!(
+                "{} = {} (library {}: {})",
+                o.key,
+                show(o.value),
+                o.material,
+                o.library_value.map_or("none".into(), show)
+            ),
+        ));
+    }
     let c = &scene.criteria;
     rows.push((
         "criteria".into(),
@@ -140,7 +160,7 @@ fn enabled_names(scene: &Scene) -> Vec<&'static str> {
 /// Value and limit of a check in human units.
 fn check_cells(c: &CheckResult) -> (String, String) {
     let f = |x: f64| match c.kind {
-        CheckKind::MinThickness => format!("{} um", um(x)),
+        CheckKind::MinThickness => format!("{} µm", um(x)),
         _ => format!("{} MPa", mpa(x)),
     };
     let limit = match (c.kind, c.limit) {
@@ -215,8 +235,8 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
     rows
 }
 
-/// The checks as (check, value, limit, margin, result), as the table shows them.
-pub(crate) fn check_rows(outcome: &Outcome) -> Vec<[String; 5]> {
+/// The checks as (check, value, limit, utilisation, margin, result), as the table shows them.
+pub(crate) fn check_rows(outcome: &Outcome) -> Vec<[String; 6]> {
     let ev = &outcome.evaluation;
     outcome
         .checks
@@ -230,23 +250,21 @@ pub(crate) fn check_rows(outcome: &Outcome) -> Vec<[String; 5]> {
                     " (interface peak)"
                 };
             }
-            let margin = ch
-                .margin
-                .map(|m| format!("{:+.1} %", 100.0 * m))
-                .unwrap_or_else(|| "-".into());
             [
                 ch.kind.name().to_string(),
                 v,
                 l,
-                margin,
+                utilisation_cell(ch.margin),
+                margin_cell(ch.margin),
                 if ch.pass { "PASS" } else { "FAIL" }.into(),
             ]
         })
         .collect()
 }
 
-/// The default output: scene, results, checks, d_min, warnings.
-pub fn human(scene: &Scene, outcome: &Outcome) -> String {
+/// The default output: scene, results, checks, d_min, the verdict, what would make a failing
+/// design pass, warnings.
+pub fn human(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> String {
     let mut out = String::new();
     let mut t = table(&["scene", "value"]);
     for (k, v) in scene_rows(scene) {
@@ -258,46 +276,62 @@ pub fn human(scene: &Scene, outcome: &Outcome) -> String {
         t.add_row(r.to_vec());
     }
     out += &format!("{t}\n");
-    let mut t = table(&["check", "value", "limit", "margin", "result"]);
+    let mut t = table(&["check", "value", "limit", "utilisation", "margin", "result"]);
     for r in check_rows(outcome) {
         t.add_row(r.to_vec());
     }
     out += &format!("{t}\n");
 
+    let governing =
+        |g: Option<CheckKind>| format!("governing check: {}", g.map_or("-", CheckKind::name));
     if let Some(m) = &outcome.min_thickness {
         out += &match (m.thickness, m.governing) {
             (None, g) => format!(
-                "minimum thickness: no thickness passes (governed by {})\n",
-                g.map(CheckKind::name).unwrap_or("-")
+                "minimum thickness: no thickness passes ({})\n",
+                governing(g)
             ),
             (Some(d), _) if m.all_pass_to_floor => format!(
-                "minimum thickness: every thickness down to {} um passes\n",
+                "minimum thickness: every thickness down to {} µm passes\n",
                 um(d.value)
             ),
             (Some(d), g) => format!(
-                "minimum thickness: {} um ± {} um (governed by {})\n",
+                "minimum thickness: {} µm ± {} µm ({})\n",
                 um(d.value),
                 sig(d.err * 1e6, 2),
-                g.map(CheckKind::name).unwrap_or("-")
+                governing(g)
             ),
         };
     }
+    let gov = outcome
+        .governing
+        .and_then(|g| outcome.checks.iter().find(|c| c.kind == g));
     out += &format!(
         "verdict: {}{}\n",
         if outcome.pass { "PASS" } else { "FAIL" },
-        outcome
-            .governing
-            .map(|g| format!(" (governing check: {})", g.name()))
-            .unwrap_or_default()
+        gov.map(|c| format!(
+            " ({}, utilisation {})",
+            governing(Some(c.kind)),
+            utilisation_cell(c.margin)
+        ))
+        .unwrap_or_default()
     );
+    if !levers.is_empty() {
+        out += "what alone would make it pass:\n";
+        for l in levers {
+            out += &wrap(&format!("  - {}", super::html::lever_text(l)));
+            out.push('\n');
+        }
+    }
     for w in &outcome.warnings {
-        out += &format!("warning: {w}\n");
+        out += &wrap(&format!("warning: {w}"));
+        out.push('\n');
     }
     out
 }
 
 /// The report of one judged scene: the check's tables, JSON or CSV, with the per-file verdicts
 /// when the scene lists several roughness files, and the exact section of `check --verify`.
+/// CSV is the batch's shape, one row ([`batch::records_csv`]).
 pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
     let (scene, outcome) = (&j.scene, &j.outcome);
     let ev = &outcome.evaluation;
@@ -305,7 +339,11 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
     let several = !j.files.is_empty();
     Ok(match format {
         Format::Table => {
-            let mut t = format!("{}{}", batch::files_table(j), human(scene, outcome));
+            let mut t = format!(
+                "{}{}",
+                batch::files_table(j),
+                human(scene, outcome, &j.levers)
+            );
             if let Some(x) = &j.exact {
                 t += &format!("\n{}", verify::check_table(&x.map, ev, &x.verification));
             }
@@ -313,8 +351,8 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
         }
         Format::Json => {
             // JSON shows NaN as null: the table of the same numbers is checked instead.
-            super::finite_only(&human(scene, outcome))?;
-            let mut v = json(scene, outcome);
+            super::finite_only(&human(scene, outcome, &j.levers))?;
+            let mut v = json(scene, outcome, &j.levers);
             if several {
                 let worst = j.worst_file().map(|p| p.display().to_string());
                 v["worst_file"] = json!(worst);
@@ -331,16 +369,8 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
             format!("{v:#}\n")
         }
         Format::Csv => {
-            let mut c = csv(scene, outcome)?;
-            if several {
-                let worst = j.worst_file().map(|p| p.display().to_string());
-                c += &format!("worst_file,{},,\n", worst.unwrap_or_default());
-            }
-            if let Some(x) = &j.exact {
-                c += &verify::check_csv(ev, &x.verification);
-                c += &format!("verdict_with_verify,{verdict},,\n");
-            }
-            c
+            let file = scene.file.clone().unwrap_or_else(|| "scene".into());
+            batch::records_csv(&[batch::Record::judged(&file, j, 0.0)])?
         }
     })
 }
@@ -351,7 +381,7 @@ fn put(m: &mut Map<String, Value>, key: &str, e: Option<Estimate>) {
 }
 
 /// The JSON object (see the module docs for the keys).
-pub fn json(scene: &Scene, outcome: &Outcome) -> Value {
+pub fn json(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> Value {
     let ev = &outcome.evaluation;
     let c = &ev.contact;
     let mut m = Map::new();
@@ -407,6 +437,7 @@ pub fn json(scene: &Scene, outcome: &Outcome) -> Value {
         })
         .collect();
     m.insert("checks".into(), Value::Array(checks));
+    m.insert("levers".into(), json!(levers));
     m.insert("low_octave_share".into(), json!(c.low_octave_share));
     m.insert("h_rms_m".into(), json!(outcome.h_rms));
     m.insert("rms_slope".into(), json!(outcome.rms_slope));
@@ -420,96 +451,8 @@ pub fn json(scene: &Scene, outcome: &Outcome) -> Value {
             "bond": scene.bond,
             "criteria": scene.criteria,
             "rtol": scene.settings.rtol,
+            "overrides": scene.overrides,
         }),
     );
     Value::Object(m)
-}
-
-/// CSV: one row per result, `quantity,value,err,unit`, then the checks, the verdict and one
-/// `warning` row per warning (its text as the value).
-pub fn csv(scene: &Scene, outcome: &Outcome) -> Result<String, Error> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let ser = |e: csv::Error| Error::Numerical {
-        what: "CSV output",
-        detail: e.to_string(),
-    };
-    w.write_record(["quantity", "value", "err", "unit"])
-        .map_err(ser)?;
-    let ev = &outcome.evaluation;
-    let c = &ev.contact;
-    let num = |x: Option<f64>| x.map(|x| format!("{x:e}")).unwrap_or_default();
-    let rows: Vec<(&str, Option<Estimate>, &str)> = vec![
-        ("area_fraction", Some(c.area_fraction), "1"),
-        (
-            "mean_contact_pressure",
-            Some(ev.mean_contact_pressure),
-            "Pa",
-        ),
-        ("sigma_rms_top", c.sigma_rms_top, "Pa"),
-        ("sigma_rms_interface", c.sigma_rms_interface, "Pa"),
-        ("tau_rms_interface", c.tau_rms_interface, "Pa"),
-        ("tau_peak", ev.tau_peak, "Pa"),
-        ("sigma_peak_interface", ev.sigma_peak_interface, "Pa"),
-        ("e_eff_over_e_film", c.e_eff_over_e_film, "1"),
-        (
-            "min_thickness",
-            outcome.min_thickness.as_ref().and_then(|m| m.thickness),
-            "m",
-        ),
-    ];
-    w.write_record(["thickness", &format!("{:e}", outcome.thickness), "", "m"])
-        .map_err(ser)?;
-    w.write_record(["pressure", &format!("{:e}", scene.pressure), "", "Pa"])
-        .map_err(ser)?;
-    w.write_record(["h_rms", &format!("{:e}", outcome.h_rms), "", "m"])
-        .map_err(ser)?;
-    w.write_record(["rms_slope", &format!("{:e}", outcome.rms_slope), "", "1"])
-        .map_err(ser)?;
-    for (k, e, unit) in rows {
-        w.write_record([k, &num(e.map(|e| e.value)), &num(e.map(|e| e.err)), unit])
-            .map_err(ser)?;
-    }
-    for ch in &outcome.checks {
-        let unit = if ch.kind == CheckKind::MinThickness {
-            "m"
-        } else {
-            "Pa"
-        };
-        w.write_record([
-            &format!("check:{}", ch.kind.name()),
-            &format!("{:e}", ch.value.value),
-            &format!("{:e}", ch.value.err),
-            unit,
-        ])
-        .map_err(ser)?;
-        w.write_record([
-            &format!("limit:{}", ch.kind.name()),
-            &num(ch.limit),
-            "",
-            unit,
-        ])
-        .map_err(ser)?;
-        w.write_record([
-            format!("pass:{}", ch.kind.name()).as_str(),
-            if ch.pass { "1" } else { "0" },
-            "",
-            "",
-        ])
-        .map_err(ser)?;
-    }
-    w.write_record([
-        "verdict",
-        if outcome.pass { "pass" } else { "fail" },
-        "",
-        "",
-    ])
-    .map_err(ser)?;
-    for warning in &outcome.warnings {
-        w.write_record(["warning", warning, "", ""]).map_err(ser)?;
-    }
-    let bytes = w.into_inner().map_err(|e| Error::Numerical {
-        what: "CSV output",
-        detail: e.to_string(),
-    })?;
-    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }

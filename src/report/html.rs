@@ -13,7 +13,7 @@
 
 use crate::Error;
 use crate::batch::SceneRun;
-use crate::check::levers::{Lever, SPAN, levers};
+use crate::check::levers::{Lever, SPAN};
 use crate::check::{CheckKind, Checker, Outcome, log_space};
 use crate::contact::{NormalStress, tau_exceedance};
 use crate::figures::{Axis, Figure, Series};
@@ -135,7 +135,7 @@ pub fn spectrum_plot(spectrum: &Spectrum) -> Result<Plot, Error> {
         name: "psd",
         title: "Roughness power spectrum",
         x: axis("wavenumber q", "1/m", 1.0, true),
-        y: axis("C(q)", "um^4", 1e-24, true),
+        y: axis("C(q)", "µm^4", 1e-24, true),
         series: vec![curve("C(q)", q, c)],
     };
     let extras = Extras {
@@ -303,15 +303,15 @@ pub fn utilisation_plot(checker: &Checker, outcome: &Outcome) -> Result<Option<P
     }
     let mut markers = vec![
         marker(1.0, false, "limit (utilisation 1)".into()),
-        marker(d, true, format!("design {} um", um(d))),
+        marker(d, true, format!("design {} µm", um(d))),
     ];
     if let Some(m) = d_min {
-        markers.push(marker(m, true, format!("d_min {} um", um(m))));
+        markers.push(marker(m, true, format!("d_min {} µm", um(m))));
     }
     let fig = Figure {
         name: "utilisation",
         title: "Utilisation (value / limit) against film thickness",
-        x: axis("film thickness d", "um", 1e-6, true),
+        x: axis("film thickness d", "µm", 1e-6, true),
         y: axis("utilisation", "", 1.0, true),
         series,
     };
@@ -336,23 +336,7 @@ pub fn section(title: &str, j: &Judged) -> Result<Section, Error> {
     let outcome = &j.outcome;
     let (spectrum, _) = scene.roughness.spectrum()?;
     let checker = Checker::new(&spectrum, scene.design(), scene.settings)?;
-    let checks = super::check::check_rows(outcome)
-        .into_iter()
-        .zip(&outcome.checks)
-        .map(|(r, ch)| {
-            let used = ch
-                .margin
-                .map_or("-".into(), |m| format!("{:.1} %", 100.0 * (1.0 - m)));
-            [
-                r[0].clone(),
-                r[1].clone(),
-                r[2].clone(),
-                used,
-                r[3].clone(),
-                r[4].clone(),
-            ]
-        })
-        .collect();
+    let checks = super::check::check_rows(outcome);
     let headline = match outcome
         .governing
         .and_then(|g| outcome.checks.iter().find(|c| c.kind == g))
@@ -366,10 +350,7 @@ pub fn section(title: &str, j: &Judged) -> Result<Section, Error> {
         ),
         None => "no check enabled".into(),
     };
-    let levers = levers(&spectrum, checker.design(), scene.settings, outcome)?
-        .iter()
-        .map(lever_text)
-        .collect();
+    let levers = j.levers.iter().map(lever_text).collect();
     let mut inputs = super::check::scene_rows(scene);
     for (what, source) in [
         (&scene.film.name, &scene.film.source),
@@ -475,16 +456,16 @@ pub fn page(runs: &[SceneRun], meta: &Meta) -> Result<String, Error> {
     Ok(document(&sections, meta))
 }
 
-/// "film thickness >= 12.3 um (now 5 um)", in the units people read.
+/// "film thickness >= 12.3 µm (now 5 µm)", in the units people read.
 pub fn lever_text(lever: &Lever) -> String {
     let (scale, unit, what) = match lever.name {
-        "thickness" => (1e-6, "um", "film thickness"),
+        "thickness" => (1e-6, "µm", "film thickness"),
         "bond_strength" => (1e6, "MPa", "bond shear strength"),
         "yield_strength" => (1e6, "MPa", "substrate yield strength"),
         "pressure" => (1e6, "MPa", "nominal pressure"),
         _ => (
             1e-6,
-            "um",
+            "µm",
             "rms height of the lowest octave of the roughness",
         ),
     };
@@ -575,7 +556,7 @@ fn section_html(s: &Section, level: u8) -> String {
         );
     }
     if !s.levers.is_empty() {
-        out += &h(level + 1, "What would make it pass");
+        out += &h(level + 1, "What alone would make it pass");
         out += &list("levers", &s.levers);
     }
     if !s.warnings.is_empty() {

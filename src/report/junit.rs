@@ -9,7 +9,7 @@
 //! name="evaluate">` with an `<error>` carrying the message (file and line). Warnings go to the
 //! suite's `<system-out>`.
 
-use super::sig;
+use super::{margin_cell, sig, utilisation_cell};
 use crate::batch::SceneRun;
 use crate::check::{CheckKind, CheckResult};
 use crate::error::Error;
@@ -19,7 +19,7 @@ use std::time::Duration;
 /// A check's value or limit in human units (MPa for stresses, µm for thickness).
 fn human(kind: CheckKind, x: f64) -> String {
     match kind {
-        CheckKind::MinThickness => format!("{} um", sig(x * 1e6, 4)),
+        CheckKind::MinThickness => format!("{} µm", sig(x * 1e6, 4)),
         _ => format!("{} MPa", sig(x * 1e-6, 4)),
     }
 }
@@ -29,18 +29,20 @@ pub fn failure_message(c: &CheckResult) -> String {
     let v = human(c.kind, c.value.value);
     match (c.kind, c.limit, c.margin) {
         (CheckKind::MinThickness, Some(l), Some(m)) => format!(
-            "min-thickness: thickness {v} is below d_min = {} (margin {:+.1} %)",
+            "min-thickness: thickness {v} is below d_min = {} (utilisation {}, margin {})",
             human(c.kind, l),
-            100.0 * m
+            utilisation_cell(Some(m)),
+            margin_cell(Some(m))
         ),
         (CheckKind::MinThickness, _, _) => {
             format!("min-thickness: no film thickness passes (thickness {v})")
         }
         (k, Some(l), Some(m)) => format!(
-            "{}: {v} exceeds the limit {} (margin {:+.1} %)",
+            "{}: {v} exceeds the limit {} (utilisation {}, margin {})",
             k.name(),
             human(k, l),
-            100.0 * m
+            utilisation_cell(Some(m)),
+            margin_cell(Some(m))
         ),
         (k, _, _) => format!("{}: {v} (no limit)", k.name()),
     }

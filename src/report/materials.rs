@@ -1,26 +1,21 @@
 //! `coatcheck materials`: the library as a table for people or JSON for machines (SI units,
 //! `_pa` for stresses and moduli), each entry with its source.
 
-use super::sig;
+use super::{modulus, mpa, table as new_table};
 use crate::Error;
 use crate::material::{Entry, Library};
-use comfy_table::{ContentArrangement, Table, presets::UTF8_FULL_CONDENSED};
 use serde_json::{Value, json};
 
-/// The library as a table (moduli and strengths in MPa).
+/// The library as a table (moduli in engineering units, strengths in MPa).
 pub fn table(lib: &Library) -> Result<String, Error> {
-    let mut t = Table::new();
-    t.load_preset(UTF8_FULL_CONDENSED)
-        .set_content_arrangement(ContentArrangement::Dynamic)
-        .set_width(120)
-        .set_header(["name", "kind", "E [MPa]", "nu", "strength [MPa]", "source"]);
-    let mpa = |x: f64| sig(x * 1e-6, 4);
+    let mut t = new_table(&["name", "kind", "E", "nu", "strength", "source"]);
+    let mpa = |x: f64| format!("{} MPa", mpa(x));
     for e in lib.entries()? {
         t.add_row(match e {
             Entry::Material(m) => vec![
                 m.name.clone(),
                 m.kind.to_string(),
-                mpa(m.elastic.youngs),
+                modulus(m.elastic.youngs),
                 m.elastic.poisson.to_string(),
                 m.yield_strength
                     .map(|y| format!("yield {}", mpa(y)))

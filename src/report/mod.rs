@@ -4,7 +4,7 @@
 //! written by [`mod@write`], the one writer.
 
 use crate::error::Error;
-use comfy_table::{Table, presets::UTF8_FULL_CONDENSED};
+use comfy_table::{ContentArrangement, Table, presets::UTF8_FULL_CONDENSED};
 
 pub mod batch;
 pub mod check;
@@ -16,7 +16,7 @@ pub mod plot;
 pub mod sweep;
 pub mod verify;
 pub mod write;
-pub use check::{csv, human, json, scene};
+pub use check::{human, json, scene};
 pub use sweep::{SWEEP, sweep};
 pub use write::{is_broken_pipe, stdout, write_file, write_with};
 
@@ -25,6 +25,19 @@ pub const SCHEMA_VERSION: u32 = 1;
 
 /// The JSON Schema of `coatcheck check --format json` for one scene.
 pub const CHECK_SCHEMA: &str = include_str!("schema/check.schema.json");
+/// The JSON Schema of a batch (`coatcheck check DIR --format json`); its `record` is also the
+/// shape of every `check --format csv` row.
+pub const BATCH_SCHEMA: &str = include_str!("schema/batch.schema.json");
+/// The JSON Schema of `coatcheck check --sweep-thickness --format json`.
+pub const SWEEP_SCHEMA: &str = include_str!("schema/sweep.schema.json");
+/// The JSON Schema of `coatcheck verify --format json`.
+pub const VERIFY_SCHEMA: &str = include_str!("schema/verify.schema.json");
+/// The JSON Schema of `coatcheck psd --format json`.
+pub const PSD_SCHEMA: &str = include_str!("schema/psd.schema.json");
+/// The JSON Schema of `coatcheck materials --format json`.
+pub const MATERIALS_SCHEMA: &str = include_str!("schema/materials.schema.json");
+/// The JSON Schema of `coatcheck response --format json`.
+pub const RESPONSE_SCHEMA: &str = include_str!("schema/response.schema.json");
 
 /// Output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -93,7 +106,7 @@ pub fn sig(x: f64, digits: usize) -> String {
 
 /// A Young's modulus in the unit engineers quote it in: GPa from 1 GPa, else MPa from 1 MPa,
 /// else kPa ("200.0 GPa", "1.000 MPa").
-fn modulus(pa: f64) -> String {
+pub fn modulus(pa: f64) -> String {
     let (scale, unit) = if pa >= 1e9 {
         (1e9, "GPa")
     } else if pa >= 1e6 {
@@ -104,19 +117,66 @@ fn modulus(pa: f64) -> String {
     format!("{} {unit}", sig(pa / scale, 4))
 }
 
-fn mpa(pa: f64) -> String {
+/// A stress in MPa, 4 significant digits (the number only).
+pub fn mpa(pa: f64) -> String {
     sig(pa * 1e-6, 4)
 }
 
-fn um(m: f64) -> String {
+/// A length in µm, 4 significant digits (the number only).
+pub fn um(m: f64) -> String {
     sig(m * 1e6, 4)
 }
 
-fn table(header: &[&str]) -> Table {
+/// A check's margin (unused fraction of its limit; < 0 fails) as the tables show it: "+62.1 %".
+pub fn margin_cell(margin: Option<f64>) -> String {
+    margin.map_or("-".into(), |m| format!("{:+.1} %", 100.0 * m))
+}
+
+/// A check's utilisation (value/limit, or d_min/d for the thickness: 1 − margin) as the tables
+/// show it: "37.9 %".
+pub fn utilisation_cell(margin: Option<f64>) -> String {
+    margin.map_or("-".into(), |m| format!("{:.1} %", 100.0 * (1.0 - m)))
+}
+
+/// Columns every human table and line of prose fits in.
+pub const WIDTH: usize = 100;
+
+/// A human table: the one look of every command's tables, at most [`WIDTH`] columns wide
+/// (cells wrap at spaces when the content would be wider).
+pub fn table(header: &[&str]) -> Table {
     let mut t = Table::new();
-    t.load_preset(UTF8_FULL_CONDENSED);
+    t.load_preset(UTF8_FULL_CONDENSED)
+        .set_content_arrangement(ContentArrangement::Dynamic)
+        .set_width(WIDTH as u16);
     t.set_header(header.iter().copied());
     t
+}
+
+/// `text` wrapped at spaces to lines of at most [`WIDTH`] characters; a line keeps its leading
+/// spaces and its continuation lines are indented two more (a word longer than a line stays
+/// whole).
+pub fn wrap(text: &str) -> String {
+    let mut out = Vec::new();
+    for para in text.split('\n') {
+        let body = para.trim_start_matches(' ');
+        let indent = " ".repeat(para.len() - body.len());
+        let mut line = indent.clone();
+        let mut empty = true;
+        for word in body.split(' ') {
+            let len = line.chars().count();
+            if !empty && len + 1 + word.chars().count() > WIDTH {
+                out.push(std::mem::replace(&mut line, format!("{indent}  {word}")));
+            } else {
+                if !empty {
+                    line.push(' ');
+                }
+                line += word;
+            }
+            empty = false;
+        }
+        out.push(line);
+    }
+    out.join("\n")
 }
 
 #[cfg(test)]
@@ -147,6 +207,31 @@ mod tests {
         // Words and numbers that merely contain the letters are fine.
         let fine = "information, infinite film: 1e300 | infinity-norm ┆ nan-free ┆ 0\n";
         assert!(finite_only(fine).is_ok());
+    }
+
+    #[test]
+    fn prose_wraps_at_the_width_and_keeps_every_word() {
+        let text = "word ".repeat(60) + "end";
+        let w = wrap(&text);
+        assert!(w.lines().all(|l| l.chars().count() <= WIDTH), "{w}");
+        assert!(
+            w.lines()
+                .skip(1)
+                .all(|l| l.starts_with("  word") || l.starts_with("  end"))
+        );
+        assert_eq!(
+            w.split_whitespace().collect::<Vec<_>>(),
+            text.split_whitespace().collect::<Vec<_>>()
+        );
+        assert_eq!(wrap("short\nlines"), "short\nlines");
+        let item = wrap(&format!("  - {}", "x ".repeat(60)));
+        assert!(item.starts_with("  - x") && item.lines().nth(1).unwrap().starts_with("    x"));
+        let t = format!("{}", {
+            let mut t = table(&["a", "b"]);
+            t.add_row(vec!["x".to_string(), "long words ".repeat(30)]);
+            t
+        });
+        assert!(t.lines().all(|l| l.chars().count() <= WIDTH), "{t}");
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! (the project's chosen dataframe library) behind the opt-in cargo feature `parquet`. The
 //! default build has no polars; there `--parquet` is refused before anything runs.
 //!
-//! Columns: a batch has one row per scene with the columns of [`crate::report::batch::COLUMNS`] (SI
+//! Columns: a batch has one row per scene with the columns of [`crate::report::batch::columns`] (SI
 //! units; text, f64 and u64 columns, nulls where a value does not apply); a sweep has one row
 //! per thickness: `thickness_m`, the sweep quantities of `report::sweep` and `<check>_pass` for
 //! the stress checks. Files are written by [`mod@crate::report::write`].
@@ -27,7 +27,7 @@ pub fn unavailable() -> Error {
 mod imp {
     use super::*;
     use crate::check::CheckKind;
-    use crate::report::batch::{COLUMNS, Cell, Record};
+    use crate::report::batch::{Cell, Record, columns};
     use polars::prelude::{Column, DataFrame, ParquetWriter};
 
     /// One column's values.
@@ -83,7 +83,7 @@ mod imp {
 
     pub fn write_batch(path: &Path, runs: &[SceneRun]) -> Result<(), Error> {
         let records: Vec<Record> = runs.iter().map(Record::of).collect();
-        let columns = COLUMNS
+        let columns = columns()
             .iter()
             .map(|(name, get)| {
                 let mut data = match get(&Record::default()) {

@@ -2,69 +2,84 @@
 //! or CSV.
 
 use super::{Format, mpa, sig, table, um};
-use crate::check::Evaluation;
+use crate::check::{CheckKind, Evaluation};
 use crate::error::Error;
 use serde_json::{Map, Value, json};
 
-/// The sweep columns: (header, unit scale to SI, getter).
+/// The sweep columns: (table header, JSON and CSV key, getter in SI).
 pub type Getter = fn(&Evaluation) -> Option<f64>;
 pub const SWEEP: &[(&str, &str, Getter)] = &[
     ("A/A0", "area_fraction", |e| {
         Some(e.contact.area_fraction.value)
     }),
-    ("E_eff/E_film", "e_eff_over_e_film", |e| {
+    ("E_eff/ E_film", "e_eff_over_e_film", |e| {
         e.contact.e_eff_over_e_film.map(|x| x.value)
     }),
-    ("p_mean [MPa]", "mean_contact_pressure_pa", |e| {
+    ("p_mean", "mean_contact_pressure_pa", |e| {
         Some(e.mean_contact_pressure.value)
     }),
-    ("sigma_rms top [MPa]", "sigma_rms_top_pa", |e| {
+    ("σ_rms top", "sigma_rms_top_pa", |e| {
         e.contact.sigma_rms_top.map(|x| x.value)
     }),
-    ("sigma_rms int [MPa]", "sigma_rms_interface_pa", |e| {
+    ("σ_rms int", "sigma_rms_interface_pa", |e| {
         e.contact.sigma_rms_interface.map(|x| x.value)
     }),
-    ("sigma_peak int [MPa]", "sigma_peak_interface_pa", |e| {
+    ("σ_peak int", "sigma_peak_interface_pa", |e| {
         e.sigma_peak_interface.map(|x| x.value)
     }),
-    ("tau_rms [MPa]", "tau_rms_interface_pa", |e| {
+    ("τ_rms int", "tau_rms_interface_pa", |e| {
         e.contact.tau_rms_interface.map(|x| x.value)
     }),
-    ("tau_peak [MPa]", "tau_peak_pa", |e| {
+    ("τ_peak int", "tau_peak_pa", |e| {
         e.tau_peak.map(|x| x.value)
     }),
 ];
 
 /// The thickness sweep in the chosen format.
 pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
-    let pressure_col = |h: &str| h.contains("MPa");
     match format {
         Format::Table => {
-            let mut head = vec!["d [um]"];
-            head.extend(SWEEP.iter().map(|(h, _, _)| *h));
-            head.push("checks");
+            // Short headers (a unit line above) so that the table fits the width; σ_rms of the
+            // top surface, nearly constant in d, is in JSON and CSV only.
+            let shown: Vec<_> = SWEEP
+                .iter()
+                .filter(|(_, k, _)| *k != "sigma_rms_top_pa")
+                .collect();
+            let mut head = vec!["d"];
+            head.extend(shown.iter().map(|(h, _, _)| *h));
+            head.push("fails");
             let mut t = table(&head);
             for ev in rows {
                 let mut cells = vec![um(ev.contact.thickness)];
-                for (h, _, get) in SWEEP {
+                for (_, key, get) in &shown {
                     cells.push(match get(ev) {
-                        Some(x) if pressure_col(h) => mpa(x),
+                        Some(x) if key.ends_with("_pa") => mpa(x),
                         Some(x) => sig(x, 4),
                         None => "-".into(),
                     });
                 }
-                cells.push(
-                    ev.checks
-                        .iter()
-                        .map(|c| {
-                            format!("{} {}", c.kind.name(), if c.pass { "PASS" } else { "FAIL" })
-                        })
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                );
+                let failing: Vec<_> = ev
+                    .checks
+                    .iter()
+                    .filter(|c| !c.pass)
+                    .map(|c| match c.kind {
+                        CheckKind::BondShear => "bond",
+                        CheckKind::SubstrateYield => "yield",
+                        CheckKind::MinThickness => "d_min",
+                    })
+                    .collect();
+                cells.push(if failing.is_empty() {
+                    "-".into()
+                } else {
+                    failing.join(", ")
+                });
                 t.add_row(cells);
             }
-            Ok(format!("{t}\n"))
+            let caption = super::wrap(
+                "d in µm, stresses in MPa; fails: the checks failing at that thickness (bond: bond-shear, \
+                 yield: substrate-yield)",
+            );
+            Ok(format!("{caption}\n{t}\n"))
         }
         Format::Json => {
             let list: Vec<Value> = rows
@@ -84,7 +99,14 @@ pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
                     Value::Object(m)
                 })
                 .collect();
-            Ok(format!("{:#}\n", json!({ "sweep": list })))
+            Ok(format!(
+                "{:#}\n",
+                json!({
+                    "schema_version": super::SCHEMA_VERSION,
+                    "coatcheck_version": env!("CARGO_PKG_VERSION"),
+                    "sweep": list,
+                })
+            ))
         }
         Format::Csv => {
             let mut w = csv::Writer::from_writer(Vec::new());

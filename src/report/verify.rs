@@ -2,14 +2,12 @@
 //! contact, its JSON object, the fields as CSV) and of the exact section of `check --verify`
 //! (tables in MPa with 4 significant digits like the check's report, JSON, CSV rows).
 
-use super::sig;
-use crate::bem::{BemSolution, FieldStats, InterfaceFields, Surface};
+use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
+use crate::bem::{BemSolution, Convergence, FieldStats, InterfaceFields, Surface};
 use crate::check::Evaluation;
 use crate::error::Error;
 use crate::layer::Stack;
 use crate::verify::{Comparison, Verification, check_rows};
-use comfy_table::Table;
-use comfy_table::presets::UTF8_FULL_CONDENSED;
 use serde_json::{Value, json};
 use std::io::Write;
 use std::path::Path;
@@ -36,55 +34,58 @@ fn stats_json(s: &FieldStats) -> Value {
 pub fn verify_table(i: &VerifyInputs, c: &Comparison) -> String {
     let (s, sol, stack, p0) = (&c.surface, &c.solution, i.stack, i.p0);
     let (xi, seconds, rows) = (s.rms_slope(), c.seconds, &c.rows);
-    let mut scene = Table::new();
-    scene.set_header(vec!["scene", "value"]);
+    let mut scene = table(&["scene", "value"]);
     let l = stack.layers;
     scene.add_row(vec![
         "height map".into(),
         format!(
-            "{} ({} x {}, pixel {:.4e} x {:.4e} m)",
+            "{} ({} x {}, pixel {} x {} µm)",
             i.map.display(),
             s.nx,
             s.ny,
-            s.dx,
-            s.dy
+            um(s.dx),
+            um(s.dy)
         ),
     ]);
     scene.add_row(vec![
         "h_rms, rms slope".into(),
-        format!("{:.4e} m, {:.4}", sol.h_rms, xi),
+        format!("{} µm, {}", um(sol.h_rms), sig(xi, 4)),
     ]);
     scene.add_row(vec![
         "film".into(),
-        format!("E = {:.4e} Pa, nu = {}", l.film.youngs, l.film.poisson),
+        format!("E = {}, nu = {}", modulus(l.film.youngs), l.film.poisson),
     ]);
     scene.add_row(vec![
         "substrate".into(),
         format!(
-            "E = {:.4e} Pa, nu = {}",
-            l.substrate.youngs, l.substrate.poisson
+            "E = {}, nu = {}",
+            modulus(l.substrate.youngs),
+            l.substrate.poisson
         ),
     ]);
     scene.add_row(vec![
         "thickness d, q_L d".into(),
         format!(
-            "{:.4e} m, {:.4}",
-            stack.thickness,
-            s.q_low() * stack.thickness
+            "{} µm, {}",
+            um(stack.thickness),
+            sig(s.q_low() * stack.thickness, 4)
         ),
     ]);
-    scene.add_row(vec!["pressure p0".into(), format!("{p0:.4e} Pa")]);
+    scene.add_row(vec!["pressure p0".into(), format!("{} MPa", mpa(p0))]);
     let c = &sol.convergence;
     scene.add_row(vec![
         "solver".into(),
         format!(
-            "{:?} after {} iterations in {seconds:.2} s (rms gap in contact {:.2e} m, \
-             penetration {:.2e} m, tolerance {:.2e} m)",
-            c.status, c.iterations, c.gap_rms_in_contact, c.max_penetration, c.tolerance
+            "{:?} after {} iterations in {seconds:.2} s (rms gap in contact {:.2e} µm, \
+             penetration {:.2e} µm, tolerance {:.2e} µm)",
+            c.status,
+            c.iterations,
+            c.gap_rms_in_contact * 1e6,
+            c.max_penetration * 1e6,
+            c.tolerance * 1e6
         ),
     ]);
-    let mut t = Table::new();
-    t.set_header(vec![
+    let mut t = table(&[
         "quantity",
         "unit",
         "Persson",
@@ -92,23 +93,43 @@ pub fn verify_table(i: &VerifyInputs, c: &Comparison) -> String {
         "exact (BEM)",
         "exact/Persson",
     ]);
-    let num = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4e}"));
+    // Stresses in MPa like every table; the rest as they are.
+    let scale = |unit: &str| if unit == "Pa" { 1e-6 } else { 1.0 };
     for r in rows {
+        let k = scale(r.unit);
         t.add_row(vec![
             r.name.clone(),
-            r.unit.to_string(),
-            num(r.persson.map(|p| p.value)),
-            r.persson.map_or("-".into(), |p| format!("{:.1e}", p.err)),
-            format!("{:.4e}", r.exact),
-            r.ratio().map_or("-".into(), |v| format!("{v:.3}")),
+            if r.unit == "Pa" { "MPa" } else { r.unit }.to_string(),
+            r.persson.map_or("-".into(), |p| sig(p.value * k, 4)),
+            r.persson.map_or("-".into(), |p| sig(p.err * k, 2)),
+            sig(r.exact * k, 4),
+            r.ratio().map_or("-".into(), |v| sig(v, 3)),
         ]);
     }
     format!(
-        "{scene}\n{t}\nA/A0 counts pixels in contact (±{:.1e} from the solver tolerance); refine the map to see \
-         the discretisation error. Quantiles: contact pressure over the contact area, interface \
-         stresses over the whole interface.\n",
-        sol.area_fraction.err
+        "{scene}\n{t}\n{}\n",
+        wrap(&format!(
+            "A/A0 counts pixels in contact (±{:.1e} from the solver tolerance); refine the map to \
+             see the discretisation error. Quantiles: contact pressure over the contact area, \
+             interface stresses over the whole interface.",
+            sol.area_fraction.err
+        ))
     )
+}
+
+/// The boundary-element solver's convergence (lengths in m), as `verify` and `check --verify`
+/// write it.
+fn solver_json(c: &Convergence, seconds: f64) -> Value {
+    json!({
+        "iterations": c.iterations,
+        "restarts": c.restarts,
+        "gap_rms_in_contact_m": c.gap_rms_in_contact,
+        "max_penetration_m": c.max_penetration,
+        "tolerance_m": c.tolerance,
+        "load_error": c.load_error,
+        "status": c.status,
+        "seconds": seconds,
+    })
 }
 
 /// `coatcheck verify`'s JSON object.
@@ -117,29 +138,22 @@ pub fn verify_json(i: &VerifyInputs, c: &Comparison) -> Value {
     let (d, p0, bond, above, rows) = (i.stack.thickness, i.p0, i.bond, c.above_bond, &c.rows);
     let (xi, seconds) = (surface.rms_slope(), c.seconds);
     json!({
+        "schema_version": super::SCHEMA_VERSION,
+        "coatcheck_version": env!("CARGO_PKG_VERSION"),
         "map": i.map.display().to_string(),
         "nx": surface.nx, "ny": surface.ny, "dx_m": surface.dx, "dy_m": surface.dy,
         "h_rms_m": sol.h_rms, "rms_slope": xi, "q_low_per_m": surface.q_low(),
         "q_low_d": surface.q_low() * d,
         "thickness_m": d, "pressure_pa": p0,
-        "solver": {
-            "iterations": sol.convergence.iterations,
-            "restarts": sol.convergence.restarts,
-            "gap_rms_in_contact_m": sol.convergence.gap_rms_in_contact,
-            "max_penetration_m": sol.convergence.max_penetration,
-            "tolerance_m": sol.convergence.tolerance,
-            "load_error": sol.convergence.load_error,
-            "status": sol.convergence.status,
-            "seconds": seconds,
-        },
+        "solver": solver_json(&sol.convergence, seconds),
         "area_fraction": sol.area_fraction.value,
         "area_fraction_err": sol.area_fraction.err,
         "persson_area_fraction": theory.area_fraction.value,
         "persson_area_fraction_err": theory.area_fraction.err,
         "sigma_rms_top_pa": sol.sigma_rms_top,
-        "contact_pressure": stats_json(&sol.contact_pressure),
-        "interface_normal": stats_json(&fields.normal_stats),
-        "interface_shear_abs": stats_json(&fields.shear_stats),
+        "contact_pressure_pa": stats_json(&sol.contact_pressure),
+        "interface_normal_pa": stats_json(&fields.normal_stats),
+        "interface_shear_abs_pa": stats_json(&fields.shear_stats),
         "bond_strength_pa": bond,
         "shear_fraction_above_bond": above,
         "comparison": rows.iter().map(|r| json!({
@@ -187,22 +201,21 @@ pub fn write_fields(
 
 /// The `check --verify` section as tables (MPa, 4 significant digits, like the check's report).
 pub fn check_table(map: &Path, ev: &Evaluation, v: &Verification) -> String {
-    let mut out = format!(
+    let mut out = wrap(&format!(
         "exact check on the height map {} ({} x {} pixels, q_L d = {}; boundary elements, {} \
-         iterations; error = difference to the same map at half resolution)\n",
+         iterations; error = difference to the same map at half resolution)",
         map.display(),
         v.nx,
         v.ny,
         sig(v.q_low_d, 3),
         v.convergence.iterations
-    );
+    ));
+    out.push('\n');
     let show = |key: &str, x: f64| match key.strip_suffix("_pa") {
         Some(_) => format!("{} MPa", sig(x * 1e-6, 4)),
         None => sig(x, 4),
     };
-    let mut t = Table::new();
-    t.load_preset(UTF8_FULL_CONDENSED);
-    t.set_header(vec![
+    let mut t = table(&[
         "quantity",
         "Persson",
         "exact (BEM)",
@@ -223,9 +236,14 @@ pub fn check_table(map: &Path, ev: &Evaluation, v: &Verification) -> String {
         ]);
     }
     out += &format!("{t}\n");
-    let mut c = Table::new();
-    c.load_preset(UTF8_FULL_CONDENSED);
-    c.set_header(vec!["check (exact)", "value", "limit", "margin", "result"]);
+    let mut c = table(&[
+        "check (exact)",
+        "value",
+        "limit",
+        "utilisation",
+        "margin",
+        "result",
+    ]);
     for ch in &v.checks {
         let mut result = if ch.pass { "PASS" } else { "FAIL" }.to_string();
         if !ch.resolved {
@@ -235,16 +253,18 @@ pub fn check_table(map: &Path, ev: &Evaluation, v: &Verification) -> String {
             ch.kind.name().to_string(),
             show("_pa", ch.value.value),
             format!("<= {}", show("_pa", ch.limit)),
-            format!("{:+.1} %", 100.0 * ch.margin),
+            utilisation_cell(Some(ch.margin)),
+            margin_cell(Some(ch.margin)),
             result,
         ]);
     }
     out += &format!("{c}\n");
-    out += &format!(
+    out += &wrap(&format!(
         "exact verdict: {}; with --verify the design passes only if both Persson's and the exact \
-         checks pass (min-thickness is judged by Persson's theory only)\n",
+         checks pass (min-thickness is judged by Persson's theory only)",
         if v.pass { "PASS" } else { "FAIL" }
-    );
+    ));
+    out.push('\n');
     out
 }
 
@@ -269,40 +289,16 @@ pub fn check_json(map: &Path, ev: &Evaluation, v: &Verification) -> Value {
                 .iter()
                 .map(|c| json!({
                     "name": c.kind.name(), "value": c.value.value, "value_err": c.value.err,
-                    "limit": c.limit, "margin": c.margin, "pass": c.pass, "resolved": c.resolved,
+                    "unit": "Pa", "limit": c.limit, "utilisation": 1.0 - c.margin,
+                    "margin": c.margin, "pass": c.pass, "resolved": c.resolved,
                 }))
                 .collect::<Vec<_>>()
         ),
     );
-    m.insert("solver".into(), json!(v.convergence));
-    m.insert("seconds".into(), json!(v.seconds));
+    m.insert("solver".into(), solver_json(&v.convergence, v.seconds));
     m.insert(
         "verdict".into(),
         json!(if v.pass { "pass" } else { "fail" }),
     );
     Value::Object(m)
-}
-
-/// The `check --verify` section as CSV rows (`verify:<key>,value,err,unit`), no header.
-pub fn check_csv(ev: &Evaluation, v: &Verification) -> String {
-    let mut out = String::new();
-    for r in check_rows(ev, v) {
-        let (key, e) = (r.key, r.exact);
-        let (key, unit) = key.strip_suffix("_pa").map_or((key, "1"), |k| (k, "Pa"));
-        out += &format!("verify:{key},{:e},{:e},{unit}\n", e.value, e.err);
-    }
-    for c in &v.checks {
-        let name = c.kind.name();
-        out += &format!(
-            "verify:check:{name},{:e},{:e},Pa\n",
-            c.value.value, c.value.err
-        );
-        out += &format!("verify:limit:{name},{:e},,Pa\n", c.limit);
-        out += &format!("verify:pass:{name},{},,\n", u8::from(c.pass));
-    }
-    out += &format!(
-        "verify:verdict,{},,\n",
-        if v.pass { "pass" } else { "fail" }
-    );
-    out
 }

@@ -429,7 +429,7 @@ key_table! {
         flag: "--film-youngs-modulus",
         value: quantity(Dim::Pressure, Range::Si(1.0, 1e13)),
         alt: Some((Choice::Film, 1)),
-        help: "Film Young's modulus (instead of a material name)",
+        help: "Film Young's modulus (instead of a material name, or overriding the named material's)",
     },
     FilmPoissonRatio => Spec {
         name: "film.poisson_ratio",
@@ -457,7 +457,7 @@ key_table! {
         flag: "--substrate-youngs-modulus",
         value: quantity(Dim::Pressure, Range::Si(1.0, 1e13)),
         alt: Some((Choice::Substrate, 1)),
-        help: "Substrate Young's modulus (instead of a material name)",
+        help: "Substrate Young's modulus (instead of a material name, or overriding the named material's)",
     },
     SubstratePoissonRatio => Spec {
         name: "substrate.poisson_ratio",
@@ -485,7 +485,7 @@ key_table! {
         flag: "--shear-strength",
         value: quantity(Dim::Pressure, Range::Si(1.0, 1e12)),
         alt: Some((Choice::Bond, 1)),
-        help: "Bond shear strength (instead of a bond name)",
+        help: "Bond shear strength (instead of a bond name, or overriding the named bond's)",
     },
     Pressure => Spec {
         name: "load.pressure",

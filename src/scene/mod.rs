@@ -32,10 +32,12 @@
 //! version the design was qualified with; a different running version gives a warning
 //! ([`Scene::version_warning`]).
 //!
-//! The Gaussian band (eq. 5) is `model = "gaussian"` with `q0` and `width`. A substrate given by
-//! name may still set `yield_strength` (the grade's value overrides the library's). Unknown keys
-//! and contradictions (psd and a model, a material and explicit moduli, rms slope and height) are
-//! errors naming the keys and the line. A flag for one alternative (e.g. `--psd`) replaces the
+//! The Gaussian band (eq. 5) is `model = "gaussian"` with `q0` and `width`. A material or bond
+//! given by name may override one of its properties (`film.material = "nbr"` with
+//! `film.youngs_modulus = "5 MPa"`; `substrate.yield_strength`; `bond.shear_strength`): the
+//! scene lists each as an [`Override`], which every report shows. Unknown keys and contradictions
+//! (psd and a model, a material with both moduli, rms slope and height) are errors naming the
+//! keys and the line. A flag for one alternative (e.g. `--psd`) replaces the
 //! file's other alternative (e.g. its model).
 //!
 //! - `keys`: the table of keys ([`KEYS`]: name, flag, value kind, range, alternatives, help)
@@ -81,6 +83,23 @@ pub struct Scene {
     pub pressure: f64,
     pub criteria: Criteria,
     pub settings: Settings,
+    /// The properties of named materials and bond the scene replaces.
+    pub overrides: Vec<Override>,
+}
+
+/// One property of a named library material or bond replaced by the scene's value.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Override {
+    /// The scene key, e.g. `film.youngs_modulus`.
+    pub key: &'static str,
+    /// The library entry whose property is replaced.
+    pub material: String,
+    /// The scene's value, SI.
+    pub value: f64,
+    /// The library's value, SI (`None`: the library gives none).
+    pub library_value: Option<f64>,
+    /// `Pa`, or `1` for a ratio.
+    pub unit: &'static str,
 }
 
 impl Scene {

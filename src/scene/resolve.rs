@@ -2,9 +2,9 @@
 //! table entry says, contradictions between alternatives, materials and bond looked up in the
 //! library, criteria and numerics. Errors name the key and its line (or flag).
 
-use super::Scene;
 use super::keys::{Choice, Key, RawScene};
 use super::roughness::resolve_roughness;
+use super::{Override, Scene};
 use crate::check::{CheckKind, Checks, Criteria};
 use crate::error::Error;
 use crate::layer::Elastic;
@@ -64,10 +64,11 @@ pub fn resolve(
     let coatcheck_version = pinned_version(raw, ctx)?;
     check_contradictions(r)?;
     let roughness = resolve_roughness(r)?;
-    let film = resolve_material(r, library, Role::FILM)?;
+    let mut overrides = Vec::new();
+    let film = resolve_material(r, library, Role::FILM, &mut overrides)?;
     let thickness = r.quantity(Key::Thickness)?;
-    let substrate = resolve_material(r, library, Role::SUBSTRATE)?;
-    let bond = resolve_bond(r, library)?;
+    let substrate = resolve_material(r, library, Role::SUBSTRATE, &mut overrides)?;
+    let bond = resolve_bond(r, library, &mut overrides)?;
     let pressure = r.quantity(Key::Pressure)?.ok_or_else(|| {
         ctx.missing(
             Key::Pressure.name(),
@@ -100,6 +101,7 @@ pub fn resolve(
         pressure,
         criteria,
         settings,
+        overrides,
     })
 }
 
@@ -141,7 +143,8 @@ fn pinned_version(raw: &RawScene, ctx: Ctx<'_>) -> Result<Option<String>, Error>
 }
 
 /// Keys of two alternatives of one choice: the first given key of the second alternative is
-/// reported, naming the first alternative's.
+/// reported, naming the first alternative's. A named material or bond with one property of its
+/// other alternative is an override, not a contradiction.
 fn check_contradictions(r: Reader<'_>) -> Result<(), Error> {
     for choice in Choice::ALL {
         let alt_of = |k: Key| k.spec().alt.filter(|(c, _)| *c == choice).map(|(_, a)| a);
@@ -157,11 +160,21 @@ fn check_contradictions(r: Reader<'_>) -> Result<(), Error> {
                 .find_map(|&k| r.field(k).map(|f| (k, f)))
         });
         if let (Some((k1, _)), Some((k2, f2))) = (given.next(), given.next()) {
-            return Err(r.error(
-                k2,
-                f2,
-                format!("contradicts {} (give one of them, not both)", k1.name()),
-            ));
+            let properties = Key::ALL
+                .iter()
+                .filter(|&&k| alt_of(k) == Some(1) && r.field(k).is_some())
+                .count();
+            let named = matches!(choice, Choice::Film | Choice::Substrate | Choice::Bond);
+            if named && properties == 1 {
+                continue;
+            }
+            let why = if named {
+                "a named material may override one property; give the material or all its \
+                 properties, not both"
+            } else {
+                "give one of them, not both"
+            };
+            return Err(r.error(k2, f2, format!("contradicts {} ({why})", k1.name())));
         }
     }
     Ok(())
@@ -196,21 +209,44 @@ impl Role {
     };
 }
 
-/// A film or substrate: a library material by name, or Young's modulus and Poisson ratio; a
-/// given yield strength overrides the material's.
-fn resolve_material(r: Reader<'_>, library: &Library, role: Role) -> Result<Material, Error> {
+/// A film or substrate: a library material by name (one of whose properties the scene may
+/// override, recorded in `overrides`), or Young's modulus and Poisson ratio.
+fn resolve_material(
+    r: Reader<'_>,
+    library: &Library,
+    role: Role,
+    overrides: &mut Vec<Override>,
+) -> Result<Material, Error> {
     let ctx = r.ctx;
     let mut m = match (
         r.field(role.material),
         r.field(role.youngs),
         r.field(role.poisson),
     ) {
-        (Some(f), _, _) => {
+        (Some(f), fe, fnu) => {
             let name = ctx.text(f, role.material.name())?;
-            library
+            let mut m = library
                 .material(name)
                 .map_err(|e| r.error(role.material, f, e))?
-                .clone()
+                .clone();
+            let (mut e, mut nu) = (m.elastic.youngs, m.elastic.poisson);
+            if let Some(fe) = fe {
+                e = r.quantity_of(role.youngs, fe)?;
+                overrides.push(override_of(role.youngs, &m.name, e, Some(m.elastic.youngs)));
+            }
+            if let Some(fnu) = fnu {
+                nu = r.quantity_of(role.poisson, fnu)?;
+                overrides.push(override_of(
+                    role.poisson,
+                    &m.name,
+                    nu,
+                    Some(m.elastic.poisson),
+                ));
+            }
+            if let Some(g) = fe.or(fnu) {
+                m.elastic = Elastic::new(e, nu).map_err(|err| r.error(role.poisson, g, err))?;
+            }
+            m
         }
         (None, Some(fe), Some(fnu)) => {
             let e = r.quantity_of(role.youngs, fe)?;
@@ -244,20 +280,53 @@ fn resolve_material(r: Reader<'_>, library: &Library, role: Role) -> Result<Mate
     if let Some(key) = role.yield_strength
         && let Some(y) = r.quantity(key)?
     {
+        if r.field(role.material).is_some() {
+            overrides.push(override_of(key, &m.name, y, m.yield_strength));
+        }
         m.yield_strength = Some(y);
     }
     Ok(m)
 }
 
-/// The bond: by name from the library, or its shear strength.
-fn resolve_bond(r: Reader<'_>, library: &Library) -> Result<Bond, Error> {
+fn override_of(key: Key, material: &str, value: f64, library_value: Option<f64>) -> Override {
+    Override {
+        key: key.name(),
+        material: material.to_string(),
+        value,
+        library_value,
+        unit: if key.name().ends_with("poisson_ratio") {
+            "1"
+        } else {
+            "Pa"
+        },
+    }
+}
+
+/// The bond: by name from the library (its shear strength possibly overridden), or its shear
+/// strength.
+fn resolve_bond(
+    r: Reader<'_>,
+    library: &Library,
+    overrides: &mut Vec<Override>,
+) -> Result<Bond, Error> {
     match (r.field(Key::BondMaterial), r.field(Key::ShearStrength)) {
-        (Some(f), _) => {
+        (Some(f), given) => {
             let name = r.ctx.text(f, Key::BondMaterial.name())?;
-            Ok(library
+            let mut bond = library
                 .bond(name)
                 .map_err(|e| r.error(Key::BondMaterial, f, e))?
-                .clone())
+                .clone();
+            if let Some(fs) = given {
+                let s = r.quantity_of(Key::ShearStrength, fs)?;
+                overrides.push(override_of(
+                    Key::ShearStrength,
+                    &bond.name,
+                    s,
+                    Some(bond.shear_strength),
+                ));
+                bond.shear_strength = s;
+            }
+            Ok(bond)
         }
         (None, Some(f)) => Ok(Bond {
             name: "custom".into(),

@@ -159,10 +159,10 @@ fn failures_come_first_then_errors_then_passes() {
     for head in [
         "scene",
         "verdict",
-        "governing check",
+        "governing",
+        "utilisation",
         "margin",
         "d_min",
-        "warnings",
     ] {
         assert!(text.contains(head), "{head}");
     }

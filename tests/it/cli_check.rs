@@ -248,15 +248,21 @@ fn contradictory_scenes_name_both_keys() {
         &[],
         &["roughness.psd", "roughness.model"],
     );
+    // One property of a named material is an override; both moduli contradict the name.
     let s = MODEL_SCENE.replace(
         "material = \"paper-rubber\"\n",
-        "material = \"paper-rubber\"\nyoungs_modulus = \"2 MPa\"\n",
+        "material = \"paper-rubber\"\nyoungs_modulus = \"2 MPa\"\npoisson_ratio = 0.4\n",
     );
     bad(
         &s,
         None,
         &[],
-        &["scene.toml:9:", "film.youngs_modulus", "film.material"],
+        &[
+            "scene.toml:9:",
+            "film.youngs_modulus",
+            "film.material",
+            "override one property",
+        ],
     );
     let s = MODEL_SCENE.replace("rms_slope = 1\n", "rms_slope = 1\nrms_height = \"1 um\"\n");
     bad(
@@ -467,8 +473,15 @@ fn output_file_csv_and_sweep() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(o.stdout.is_empty());
     let text = std::fs::read_to_string(&out).unwrap();
-    assert!(text.starts_with("quantity,value,err,unit\n"), "{text}");
-    assert!(text.contains("\nverdict,pass,"), "{text}");
+    assert!(text.starts_with("scene,verdict,governing_check,"), "{text}");
+    assert_eq!(text.lines().count(), 2, "{text}");
+    assert!(
+        text.lines()
+            .nth(1)
+            .unwrap()
+            .contains(",pass,min-thickness,"),
+        "{text}"
+    );
     assert_eq!(
         std::fs::read_dir(dir.path()).unwrap().count(),
         1,

@@ -130,6 +130,40 @@ fn examples_and_readme_commands_match_their_recordings() {
     assert!(failed.is_empty(), "{}", failed.join("\n"));
 }
 
+/// Every human output (the recordings of the commands without `--format json|csv`, checked
+/// against the binary by the test above) fits 100 columns on standard output.
+#[test]
+fn human_outputs_fit_100_columns() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden");
+    let cases = std::fs::read_to_string(root.join("cases.txt")).expect("cases.txt");
+    let mut wide = Vec::new();
+    let mut tables = 0;
+    for line in cases
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
+    {
+        let (name, args) = line.split_once(':').expect("name: arguments");
+        if args.contains("--format json") || args.contains("--format csv") {
+            continue;
+        }
+        let text = std::fs::read_to_string(root.join(format!("{name}.txt"))).expect("recording");
+        let stdout = text
+            .split_once("--- stdout\n")
+            .and_then(|(_, rest)| rest.split_once("--- stderr\n"))
+            .map(|(out, _)| out)
+            .expect("a stdout section");
+        tables += usize::from(stdout.contains('┆'));
+        for l in stdout.lines() {
+            let n = l.chars().count();
+            if n > 100 {
+                wide.push(format!("{name}: {n} columns: {l}"));
+            }
+        }
+    }
+    assert!(tables >= 15, "only {tables} recordings with a table");
+    assert!(wide.is_empty(), "{}", wide.join("\n"));
+}
+
 #[test]
 fn timings_are_masked_and_nothing_else() {
     assert_eq!(

@@ -10,6 +10,7 @@ mod contact;
 mod extreme;
 mod figures;
 mod fixtures;
+mod formats;
 mod fuzz;
 mod golden;
 mod hostile_cli;

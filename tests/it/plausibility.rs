@@ -63,10 +63,20 @@ fn warned_everywhere(args: &[&str], needles: &[&str]) {
         "json: {}",
         json["warnings"]
     );
-    assert!(
-        csv.lines().any(|l| l.starts_with("warning,") && has(l)),
-        "csv: {csv}"
-    );
+    assert!(has(&csv_cell(&csv, "warnings")), "csv: {csv}");
+}
+
+/// The cell under `column` in a one-scene `check --format csv` (header and one row).
+fn csv_cell(csv: &str, column: &str) -> String {
+    let mut r = csv::Reader::from_reader(csv.as_bytes());
+    let at = r
+        .headers()
+        .unwrap()
+        .iter()
+        .position(|h| h == column)
+        .unwrap_or_else(|| panic!("no column {column}: {csv}"));
+    let row = r.records().next().expect("one row").unwrap();
+    row[at].to_string()
 }
 
 const MODEL: [&str; 8] = [
@@ -103,16 +113,9 @@ fn h_rms_and_rms_slope_used_are_printed_in_every_format() {
         "{table}"
     );
     assert!(table.contains("rms slope of the spectrum used"), "{table}");
-    let row = |name: &str| -> f64 {
-        csv.lines()
-            .find_map(|l| l.strip_prefix(&format!("{name},")))
-            .and_then(|r| r.split(',').next())
-            .unwrap()
-            .parse()
-            .unwrap()
-    };
+    let row = |name: &str| -> f64 { csv_cell(&csv, name).parse().unwrap() };
     // (serde_json parses floats to within an ulp or two.)
-    assert!((row("h_rms") / h - 1.0).abs() < 1e-14);
+    assert!((row("h_rms_m") / h - 1.0).abs() < 1e-14);
     assert!((row("rms_slope") / xi - 1.0).abs() < 1e-14);
     // A given rms slope is the one used.
     let (_, json, _) = each_format(&model(&["--rms-slope", "0.5", "--thickness", "50um"]));
@@ -333,7 +336,7 @@ fn psd_summary_h_rms_is_the_rms_after_the_named_detrend() {
             String::from_utf8_lossy(&o.stderr)
         );
         let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-        let h = v["summary"]["h_rms"].as_f64().unwrap();
+        let h = v["summary"]["h_rms_m"].as_f64().unwrap();
         assert!(
             (h / want - 1.0).abs() < 1e-9,
             "{detrend}: {h:e} vs {want:e}"

@@ -248,7 +248,7 @@ fn a_real_single_stylus_profile_gives_a_psd() {
         String::from_utf8_lossy(&o.stderr)
     );
     let j = crate::common::json(&o);
-    let c = j["c"].as_array().expect("C values");
+    let c = j["c_m4"].as_array().expect("C values");
     assert!(c.len() >= 20, "{}", c.len());
     for v in c {
         let v = v.as_f64().expect("a number");

@@ -163,13 +163,16 @@ fn check_json_follows_its_schema() {
     }
 }
 
-/// `materials --format json`: every bundled file is an entry with its source, in SI, and the
-/// numbers are the library's own.
+/// `materials --format json` follows its schema; every bundled file is an entry with its source,
+/// in SI, and the numbers are the library's own.
 #[test]
 fn materials_json_lists_every_file_with_its_source() {
     let o = crate::common::run(&["materials", "--format", "json"]);
     assert_eq!(o.status.code(), Some(0));
     let v = crate::common::json(&o);
+    let schema: Value = serde_json::from_str(coatcheck::report::MATERIALS_SCHEMA).unwrap();
+    let e = errors(&schema, &v);
+    assert!(e.is_empty(), "{}", e.join("\n"));
     assert_eq!(v["schema_version"], 1);
     let (mats, bonds) = (
         v["materials"].as_array().unwrap(),
@@ -199,5 +202,47 @@ fn materials_json_lists_every_file_with_its_source() {
         let want = lib.bond(b["name"].as_str().unwrap()).unwrap();
         assert_eq!(b["shear_strength_pa"].as_f64(), Some(want.shear_strength));
         assert!(!b["source"].as_str().unwrap().is_empty());
+    }
+}
+
+/// Every schema shipped in `src/report/schema/` is exported by the library (and so exercised
+/// against real output: check and materials above, batch, sweep, verify, psd and response in
+/// tests/it/formats.rs),
+/// and each is a draft 2020-12 object with an `$id` naming its file.
+#[test]
+fn every_shipped_schema_is_exported_and_well_formed() {
+    use coatcheck::report::{
+        BATCH_SCHEMA, CHECK_SCHEMA, MATERIALS_SCHEMA, PSD_SCHEMA, RESPONSE_SCHEMA, SWEEP_SCHEMA,
+        VERIFY_SCHEMA,
+    };
+    let exported = [
+        ("check", CHECK_SCHEMA),
+        ("batch", BATCH_SCHEMA),
+        ("verify", VERIFY_SCHEMA),
+        ("psd", PSD_SCHEMA),
+        ("response", RESPONSE_SCHEMA),
+        ("sweep", SWEEP_SCHEMA),
+        ("materials", MATERIALS_SCHEMA),
+    ];
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src/report/schema");
+    let mut files: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    let mut want: Vec<String> = exported
+        .iter()
+        .map(|(n, _)| format!("{n}.schema.json"))
+        .collect();
+    want.sort();
+    assert_eq!(files, want);
+    for (name, text) in exported {
+        let s: Value = serde_json::from_str(text).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(s["$schema"], "https://json-schema.org/draft/2020-12/schema");
+        assert_eq!(s["$id"], format!("coatcheck/{name}.schema.json"));
+        assert!(
+            s["title"].as_str().is_some_and(|t| t.contains(name)),
+            "{name}"
+        );
     }
 }

@@ -512,7 +512,7 @@ fn cli_psd_on_the_bundled_examples() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let table = String::from_utf8_lossy(&o.stdout);
     assert!(
-        table.contains("h_rms (all wavelengths)") && table.contains("500.0000 nm"),
+        table.contains("h_rms (all wavelengths)") && table.contains("0.5000 µm"),
         "{table}"
     );
     // The written PSD reads back as a spectrum, with the map's kept h_rms².
@@ -524,7 +524,7 @@ fn cli_psd_on_the_bundled_examples() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["kind"], "lines");
-    assert!(v["c1d"].as_array().unwrap().len() == v["q"].as_array().unwrap().len());
+    assert!(v["c1d_m3"].as_array().unwrap().len() == v["q_per_m"].as_array().unwrap().len());
     assert!(
         v["steps"]
             .as_array()
