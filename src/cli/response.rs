@@ -4,7 +4,7 @@
 use clap::{Args, ValueEnum};
 use coatcheck::Error;
 use coatcheck::layer::{Bilayer, Elastic};
-use coatcheck::prec::KERNEL_RTOL;
+use coatcheck::prec::{KERNEL_RTOL, SMALLEST_SUBNORMAL};
 use coatcheck::units::{Dim, parse_quantity};
 use comfy_table::{Table, presets::UTF8_FULL};
 
@@ -92,9 +92,16 @@ pub fn parse_grid(flag: &'static str, text: &str) -> Result<Vec<f64>, Error> {
     }
 }
 
-/// The error estimate of a kernel value (absolute).
+/// The error estimate of a kernel value (absolute): relative [`KERNEL_RTOL`], plus the
+/// smallest subnormal for a value below f64's normal range (f and g above q·d ≈ 700 round into
+/// the subnormals, and to 0 beyond them).
 fn err(v: f64) -> f64 {
-    KERNEL_RTOL * v.abs()
+    let rounding = if v.abs() < f64::MIN_POSITIVE {
+        SMALLEST_SUBNORMAL
+    } else {
+        0.0
+    };
+    KERNEL_RTOL * v.abs() + rounding
 }
 
 pub fn run(args: ResponseArgs) -> Result<i32, Error> {

@@ -17,6 +17,7 @@ mod hostile_readers;
 mod instrument;
 mod instrument_bin;
 mod instrument_cli;
+mod interface_far;
 mod interface_ref;
 mod kernel_table;
 mod layer;
