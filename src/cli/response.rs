@@ -130,22 +130,10 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
                  0..0.5)\n"
             )
         }
-        Format::Csv => {
-            let mut text = String::from("qd,S,S_err,f,f_err,g,g_err\n");
-            for (x, r) in &rows {
-                text += &format!(
-                    "{x:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
-                    r.s,
-                    err(r.s),
-                    r.f,
-                    err(r.f),
-                    r.g,
-                    err(r.g)
-                );
-            }
-            text
-        }
+        Format::Csv => csv(&rows),
         Format::Json => {
+            // JSON shows NaN as null: the CSV of the same numbers is checked instead.
+            coatcheck::report::finite_only(&csv(&rows))?;
             let v: Vec<serde_json::Value> = rows
                 .iter()
                 .map(|(x, r)| {
@@ -163,4 +151,21 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
     };
     coatcheck::report::stdout(&text)?;
     Ok(0)
+}
+
+/// The kernels at the q·d values as CSV, with their error estimates.
+fn csv(rows: &[(f64, coatcheck::layer::Response)]) -> String {
+    let mut text = String::from("qd,S,S_err,f,f_err,g,g_err\n");
+    for (x, r) in rows {
+        text += &format!(
+            "{x:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
+            r.s,
+            err(r.s),
+            r.f,
+            err(r.f),
+            r.g,
+            err(r.g)
+        );
+    }
+    text
 }
