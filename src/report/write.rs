@@ -265,7 +265,10 @@ mod tests {
         })
         .unwrap_err()
         .to_string();
-        assert!(e.contains("out.csv") && e.contains("2e5 is inf, column C"), "{e}");
+        assert!(
+            e.contains("out.csv") && e.contains("2e5 is inf, column C"),
+            "{e}"
+        );
         assert_eq!(std::fs::read_to_string(&p).unwrap(), "old");
         assert_eq!(names(dir.path()), ["out.csv"]);
         write_bytes_with(&p, |w| w.write_all(b"a,NaN\n")).unwrap();

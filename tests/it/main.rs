@@ -12,6 +12,7 @@ mod figures;
 mod fixtures;
 mod fuzz;
 mod golden;
+mod hostile_batch;
 mod hostile_cli;
 mod hostile_readers;
 mod instrument;

@@ -248,5 +248,9 @@ fn every_output_goes_through_the_finite_guard() {
             }
         }
     }
-    assert!(found.is_empty(), "output around the guard:\n{}", found.join("\n"));
+    assert!(
+        found.is_empty(),
+        "output around the guard:\n{}",
+        found.join("\n")
+    );
 }
