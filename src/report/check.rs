@@ -163,6 +163,20 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
     };
     let plain = |x: f64| sig(x, 4);
     let mpa_unit = |x: f64| format!("{} MPa", mpa(x));
+    // A stress whose value or error in MPa would leave f64's normal range (a thick film's
+    // interface stress, or the subnormal error of one that flushed to 0) in Pa, where both keep
+    // their digits.
+    let pa_unit = |x: f64| match x {
+        0.0 => "0 Pa".to_string(),
+        _ => format!("{x:.3e} Pa"),
+    };
+    let tiny = |x: f64| x != 0.0 && (x * 1e-6).abs() < f64::MIN_POSITIVE;
+    let stress = |e: Option<Estimate>| -> &dyn Fn(f64) -> String {
+        match e {
+            Some(e) if tiny(e.value) || tiny(e.err) => &pa_unit,
+            _ => &mpa_unit,
+        }
+    };
     row(
         "A/A0 (real contact area fraction)",
         Some(c.area_fraction),
@@ -175,17 +189,25 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
         &mpa_unit,
     );
     row("sigma_rms top surface", c.sigma_rms_top, &mpa_unit);
-    row("sigma_rms interface", c.sigma_rms_interface, &mpa_unit);
+    row(
+        "sigma_rms interface",
+        c.sigma_rms_interface,
+        stress(c.sigma_rms_interface),
+    );
     row(
         "sigma_peak interface (exceedance epsilon)",
         ev.sigma_peak_interface,
         &mpa_unit,
     );
-    row("tau_rms interface", c.tau_rms_interface, &mpa_unit);
+    row(
+        "tau_rms interface",
+        c.tau_rms_interface,
+        stress(c.tau_rms_interface),
+    );
     row(
         "tau_peak interface (exceedance epsilon)",
         ev.tau_peak,
-        &mpa_unit,
+        stress(ev.tau_peak),
     );
     rows.push([
         "share of G(q1) from the lowest octave".into(),

@@ -106,6 +106,25 @@ fn thick_film_error_estimates_bound_the_true_error_at_every_rtol() {
     }
 }
 
+/// The table shows a stress whose MPa would leave f64's normal range in Pa, with its error:
+/// 1.871e-319 Pa at d = 7.5 mm, and 0 ± 4.941e-324 Pa (not 0 ± 0 MPa) at 8 mm.
+#[test]
+fn the_table_shows_subnormal_stresses_and_errors_in_pa() {
+    for (d, sigma, tau) in [
+        ("7.5mm", "1.871e-319 Pa", "1.869e-319 Pa"),
+        ("8mm", "0 Pa", "0 Pa"),
+    ] {
+        let o = run(&["check", SCENE, "--thickness", d]);
+        assert_eq!(o.status.code(), Some(0));
+        let text = String::from_utf8(o.stdout).unwrap();
+        for (name, value) in [("sigma_rms interface", sigma), ("tau_rms interface", tau)] {
+            let row = text.lines().find(|l| l.contains(name)).unwrap();
+            let cells: Vec<&str> = row.split('┆').map(|c| c.trim_matches(['│', ' '])).collect();
+            assert_eq!(cells[1..], [value, "4.941e-324 Pa"], "d = {d}: {row}");
+        }
+    }
+}
+
 /// `response` at q·d = 600 and 700 (normal numbers, to 2e-13) and 800 (5.9e-345: 0 with an
 /// error estimate of the smallest subnormal, not 0 ± 0).
 #[test]
