@@ -84,11 +84,26 @@ impl SceneRun {
 /// Load and judge one scene file with the flag overrides.
 pub fn run_one(file: &Path, overrides: &[(&str, String)], library: &Library) -> SceneRun {
     let start = Instant::now();
-    let result = Scene::load(Some(file), overrides, library).and_then(|s| judge(&s, None));
+    let result = Scene::load(Some(file), overrides, library)
+        .and_then(|s| judge(&s, None))
+        .map_err(|e| naming(file, e));
     SceneRun {
         file: file.to_path_buf(),
         seconds: start.elapsed().as_secs_f64(),
         result,
+    }
+}
+
+/// An error that names no file (a range or numerical failure inside the engine, such as a
+/// spectrum too narrow to integrate) as an error of the scene `file`: in a batch's messages
+/// and rows every error says which scene it is.
+pub fn naming(file: &Path, e: Error) -> Error {
+    match e {
+        Error::Invalid { .. } | Error::Numerical { .. } => Error::Value {
+            origin: file.display().to_string(),
+            msg: e.to_string(),
+        },
+        e => e,
     }
 }
 

@@ -30,6 +30,19 @@ pub const KERNEL_RTOL: f64 = 2e-13;
 /// [`KERNEL_RTOL`], so the kernels' error bound holds for the tabulated values too.
 pub const TABLE_RTOL: f64 = 2e-14;
 
+/// The smallest positive f64, 2^−1074 ≈ 4.9e−324: a result that rounds into the subnormal
+/// range, or to 0 below it, is within this of its true value.
+pub const SMALLEST_SUBNORMAL: f64 = f64::from_bits(1);
+
+/// Absolute error (Pa) below which an interface stress (σ_rms or τ_rms at z = d) counts as
+/// converged whatever its relative error: four subnormal steps, 2e−323 Pa. The interface stresses
+/// fall like e^{−q_L d} (at most f(q_L d)·σ_top, σ_top the top-surface stress) and the engine
+/// resolves them to rtol while they are normal numbers (it scales the integrals by e^{2 q_L d});
+/// below f64's normal range (2.2e−308) the value and its error estimate round into the subnormals
+/// or to 0, a relative error no grid refines, and an error of a few subnormal steps is 1e−320 of
+/// any stress a film carries or a check resolves. The reported error still bounds the true one.
+pub const INTERFACE_ATOL: f64 = 4.0 * SMALLEST_SUBNORMAL;
+
 /// Default exceedance probability that defines a "peak" value (fraction of the interface).
 pub const DEFAULT_EPSILON: f64 = 1e-6;
 

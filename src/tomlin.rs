@@ -10,13 +10,81 @@ use std::path::{Path, PathBuf};
 
 /// A raw value: a TOML number, a boolean, a string (usually a number with a unit) or a list of
 /// strings.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(untagged)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Raw {
     Number(f64),
     Bool(bool),
     Text(String),
     List(Vec<String>),
+}
+
+/// What a [`Raw`] value may be, as a type error says it ("invalid type: boolean `true`,
+/// expected …").
+const RAW_EXPECTED: &str = "a number, a boolean, a string such as \"10 um\" or a list of strings";
+
+impl<'de> Deserialize<'de> for Raw {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visit;
+        impl<'de> serde::de::Visitor<'de> for Visit {
+            type Value = Raw;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(RAW_EXPECTED)
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<Raw, E> {
+                Ok(Raw::Number(v))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Raw, E> {
+                Ok(Raw::Number(v as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<Raw, E> {
+                Ok(Raw::Number(v as f64))
+            }
+            fn visit_bool<E: serde::de::Error>(self, v: bool) -> Result<Raw, E> {
+                Ok(Raw::Bool(v))
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Raw, E> {
+                Ok(Raw::Text(v.to_string()))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Raw, A::Error> {
+                let mut list = Vec::new();
+                while let Some(item) = seq.next_element::<ListItem>()? {
+                    list.push(item.0);
+                }
+                Ok(Raw::List(list))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Raw, A::Error> {
+                // The toml crate hands a date-time over as a map with this one private key.
+                let what = match map.next_key::<String>()? {
+                    Some(k) if k == "$__toml_private_datetime" => "a date-time",
+                    _ => "a table",
+                };
+                Err(serde::de::Error::invalid_type(
+                    serde::de::Unexpected::Other(what),
+                    &self,
+                ))
+            }
+        }
+        d.deserialize_any(Visit)
+    }
+}
+
+/// One entry of a [`Raw::List`]: a string, with a type error that says so.
+struct ListItem(String);
+
+impl<'de> Deserialize<'de> for ListItem {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visit;
+        impl serde::de::Visitor<'_> for Visit {
+            type Value = ListItem;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a list of strings (each entry in quotes)")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<ListItem, E> {
+                Ok(ListItem(v.to_string()))
+            }
+        }
+        d.deserialize_any(Visit)
+    }
 }
 
 /// Where a value came from.
@@ -95,6 +163,10 @@ impl Source<'_> {
                 && let Some(key) = e.span().and_then(|s| self.text.get(s))
             {
                 msg = format!("duplicate key `{}`", one_line(key));
+            } else if msg.starts_with("invalid ")
+                && let Some(key) = key_path(e)
+            {
+                msg = format!("{key}: {msg}");
             }
             Error::Input {
                 path: self.path.to_path_buf(),
@@ -103,6 +175,19 @@ impl Source<'_> {
             }
         })
     }
+}
+
+/// The dotted key a deserialisation error is about (`film.thickness`), if it names one: the
+/// message of a type or value error ("invalid type: …") leaves it out, and its `Display` states it (as "in `KEY`") only without
+/// the source text.
+fn key_path(mut e: toml::de::Error) -> Option<String> {
+    e.set_input(None);
+    let text = e.to_string();
+    let key = text
+        .lines()
+        .rev()
+        .find_map(|l| l.strip_prefix("in `")?.strip_suffix('`'))?;
+    (!key.is_empty()).then(|| key.to_string())
 }
 
 /// Collapse a multi-line message into one line.

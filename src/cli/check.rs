@@ -60,7 +60,11 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
         None => {
             let exact = args.verify.then(BemSettings::default);
             let started = std::time::Instant::now();
-            let judged = pipeline::judge(&scene, exact.as_ref())?;
+            let judged =
+                pipeline::judge(&scene, exact.as_ref()).map_err(|e| match &scene.file {
+                    Some(file) => coatcheck::batch::naming(file, e),
+                    None => e,
+                })?;
             let run = SceneRun {
                 file: scene.file.clone().unwrap_or_else(|| PathBuf::from("scene")),
                 seconds: if several {

@@ -6,6 +6,7 @@
 
 use coatcheck::Error;
 use coatcheck::psd::abel::Conversion;
+use coatcheck::report::finite::Finite;
 use coatcheck::report::{sig, table, um};
 use coatcheck::topography::io::HeightKind;
 use coatcheck::topography::spectrum::{Detrend, PsdOptions, TopographyPsd, Window};
@@ -162,10 +163,18 @@ pub fn run(a: PsdArgs) -> Result<i32, Error> {
     };
     let (info, result) = psd_of_file(&a.file, &file, &opts)?;
     let input = a.file.display().to_string();
+    // The summary numbers every format shows, checked as text first (JSON shows a NaN as null,
+    // and the CSV's comment line is prose); the data rows are checked as they are written.
+    let mut summary = Vec::new();
+    write_summary_csv(&mut summary, &result).map_err(|source| Error::Io {
+        path: PathBuf::from("<memory>"),
+        source,
+    })?;
+    coatcheck::report::finite_only(&String::from_utf8_lossy(&summary))?;
     if let Some(out) = &a.output {
         coatcheck::report::write_with(out, |w| write_csv(w, &input, &info, &result))?;
     }
-    let mut stdout = std::io::stdout().lock();
+    let mut stdout = Finite::new(std::io::stdout().lock());
     let printed = match a.format {
         FormatArg::Table => {
             writeln!(
@@ -184,10 +193,12 @@ pub fn run(a: PsdArgs) -> Result<i32, Error> {
         },
         FormatArg::Json => writeln!(stdout, "{}", json(&input, &info, &result)),
     };
-    printed.map_err(|source| Error::Io {
-        path: PathBuf::from("<stdout>"),
-        source,
-    })?;
+    printed
+        .and_then(|()| stdout.finish())
+        .map_err(|source| Error::Io {
+            path: PathBuf::from("<stdout>"),
+            source,
+        })?;
     Ok(0)
 }
 

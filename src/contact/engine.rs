@@ -9,7 +9,7 @@ use super::kernels::Kernels;
 use super::{Contact, MAX_REFINE, Request};
 use crate::error::Error;
 use crate::layer::{Bilayer, KernelTable, Stack};
-use crate::prec::{EPS, Estimate, KERNEL_RTOL, Settings, Termination};
+use crate::prec::{EPS, Estimate, INTERFACE_ATOL, KERNEL_RTOL, Settings, Termination};
 use crate::psd::Spectrum;
 use std::cell::RefCell;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -157,17 +157,12 @@ impl Engine {
             ));
         }
         let table = self.table_for(stack);
-        let kernels = match table.as_deref() {
-            Some(table) => Kernels::Table {
-                table,
-                d: stack.thickness,
-                ln_d: stack.thickness.ln(),
-            },
-            None => Kernels::Exact {
-                layers: &stack.layers,
-                d: stack.thickness,
-            },
-        };
+        let kernels = Kernels::new(
+            table.as_deref(),
+            &stack.layers,
+            stack.thickness,
+            self.spectrum.q_low(),
+        );
         let mut evaluations = 0;
         let mut interface = 0;
         let mut last = None;
@@ -206,21 +201,29 @@ impl Engine {
     }
 }
 
-fn all_estimates(c: &Contact) -> impl Iterator<Item = &Estimate> {
-    [
+fn converged(c: &Contact, rtol: f64) -> bool {
+    let [g1, area, top, e_eff, sigma, tau] = [
         Some(&c.g1),
         Some(&c.area_fraction),
         c.sigma_rms_top.as_ref(),
+        c.e_eff_over_e_film.as_ref(),
         c.sigma_rms_interface.as_ref(),
         c.tau_rms_interface.as_ref(),
-        c.e_eff_over_e_film.as_ref(),
-    ]
-    .into_iter()
-    .flatten()
+    ];
+    [g1, area, top, e_eff]
+        .into_iter()
+        .flatten()
+        .all(|e| within(e, rtol, 0.0))
+        && [sigma, tau]
+            .into_iter()
+            .flatten()
+            .all(|e| within(e, rtol, INTERFACE_ATOL))
 }
 
-fn converged(c: &Contact, rtol: f64) -> bool {
-    all_estimates(c).all(|e| e.err <= rtol * e.value.abs() || e.value == 0.0 && e.err == 0.0)
+/// Whether an estimate's error is within rtol of its value plus an absolute `atol` (a NaN error
+/// never is).
+fn within(e: &Estimate, rtol: f64, atol: f64) -> bool {
+    e.err <= rtol * e.value.abs() + atol
 }
 
 /// Relative error every contact result carries whatever the grid: the kernels' rounding
@@ -249,10 +252,26 @@ fn estimates_mut(c: &mut Contact) -> impl Iterator<Item = &mut Estimate> {
 }
 
 fn mark_not_reached(c: &mut Contact, rtol: f64) {
-    for e in estimates_mut(c) {
-        // A NaN estimate is never reported as converged.
-        if e.err.is_nan() || e.err > rtol * e.value.abs() {
+    let mark = |e: &mut Estimate, atol: f64| {
+        if !within(e, rtol, atol) {
             e.status = Termination::ToleranceNotReached;
         }
+    };
+    for e in [
+        Some(&mut c.g1),
+        Some(&mut c.area_fraction),
+        c.sigma_rms_top.as_mut(),
+        c.e_eff_over_e_film.as_mut(),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        mark(e, 0.0);
+    }
+    for e in [c.sigma_rms_interface.as_mut(), c.tau_rms_interface.as_mut()]
+        .into_iter()
+        .flatten()
+    {
+        mark(e, INTERFACE_ATOL);
     }
 }

@@ -29,7 +29,7 @@ use super::probability::{
 use super::{Contact, ERR_SAFETY, Request, sized};
 use crate::error::Error;
 use crate::layer::Stack;
-use crate::prec::{EPS, Estimate, Termination};
+use crate::prec::{EPS, Estimate, SMALLEST_SUBNORMAL, Termination};
 use crate::special::erf_and_gauss_many;
 use std::f64::consts::PI;
 
@@ -261,8 +261,10 @@ fn interface(
     let (flat, linear) = probability_at_nodes(pt, g1, area, (from, to), s);
     probability_derivatives_at(grid, cg, p0, (from, to, flat), linear, rho_k, s);
     let (sig, tau) = interface_sums(grid, (from, to), &near, req, rho_k, s);
-    let rms =
-        |acc: (f64, f64)| sqrt_estimate(2.0 * cg * acc.0, 2.0 * cg * acc.1, Termination::Converged);
+    let rms = |acc: (f64, f64)| {
+        let scaled = sqrt_estimate(2.0 * cg * acc.0, 2.0 * cg * acc.1, Termination::Converged);
+        decayed(scaled, pt.kernels.shift())
+    };
     Interface {
         sigma: req.sigma_interface.then(|| rms(sig)),
         tau: req.tau_interface.then(|| rms(tau)),
@@ -590,6 +592,23 @@ fn linear_probability(
         Some(remainder) => (lo, Some((probability_and_slope(p0, g1.value).1, remainder))),
         None => (to, None),
     }
+}
+
+/// σ = e^{−s}·σ̃ for an rms σ̃ computed from f², g² scaled by e^{2s} (`kernels`, thick films):
+/// e^{−s/2} applied twice, so that only a result below the normal range rounds (into the
+/// subnormals, or to 0 below them); that rounding, at most half the smallest subnormal, is
+/// added to the error as the whole smallest subnormal.
+fn decayed(e: Estimate, s: f64) -> Estimate {
+    if s == 0.0 {
+        return e;
+    }
+    let half = (-0.5 * s).exp();
+    let value = e.value * half * half;
+    let mut err = e.err * half * half + 4.0 * EPS * value;
+    if value < f64::MIN_POSITIVE {
+        err += SMALLEST_SUBNORMAL;
+    }
+    Estimate::new(value, err, e.status)
 }
 
 /// √v with the error of v propagated (d√v = dv / (2√v)), bounded by √dv near v = 0.

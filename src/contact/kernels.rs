@@ -2,12 +2,25 @@
 //! thickness (eqs. B8–B12 take them at q·d): from the pair's [`KernelTable`] (checked against
 //! the exact forms to [`crate::prec::TABLE_RTOL`]), or the exact forms where no table resolves
 //! them. The batch forms (`k_many`, `interface_many`) evaluate all nodes of a range at once.
+//!
+//! Thick films: f and g fall like e^{−qd}, so f² and g² leave the f64 range from q·d ≈ 355
+//! while the interface stresses (∝ f(q_L d)) stay representable up to q_L d ≈ 745. Where
+//! q_L d exceeds [`X_SHIFT`], f² and g² are returned times e^{2 q_L d} (the `shift`): from the
+//! undecayed forms (f e^{qd})², (g e^{qd})² (`Bilayer::interface_undecayed`) times
+//! e^{−2(qd − q_L d)} ≤ 1, all within the normal range; the caller applies e^{−q_L d} to the
+//! rms ([`Kernels::shift`]). Every node there has q·d > [`X_SHIFT`] > [`crate::layer::X_FAR`],
+//! where S = 1 and the table holds no f, g panels, and the integrals stop within a few q·d of
+//! q_L d, so the exact forms cost a few hundred evaluations.
 
 use crate::layer::{Bilayer, KernelTable, Nodes, Squared};
 
-/// The layer kernels at nodes q (with u = ln q) for one thickness: tabulated, or exact when no
-/// table resolves them (`layer::KernelTable`).
-pub(super) enum Kernels<'a> {
+/// Above this q_L·d the interface kernels are scaled by e^{2 q_L d}: below it f², g² at q_L d
+/// exceed e^{−400}·(f e^{qd})² ≈ 1e-174·(f e^{qd})², and sums of them stay far inside the normal
+/// range.
+pub(super) const X_SHIFT: f64 = 200.0;
+
+/// Where the kernels come from.
+enum Source<'a> {
     Table {
         table: &'a KernelTable,
         d: f64,
@@ -19,21 +32,69 @@ pub(super) enum Kernels<'a> {
     },
 }
 
-impl Kernels<'_> {
+/// The layer kernels at nodes q (with u = ln q) for one thickness: tabulated, or exact when no
+/// table resolves them (`layer::KernelTable`); f², g² scaled by e^{2·shift} (module doc).
+pub(super) struct Kernels<'a> {
+    source: Source<'a>,
+    shift: f64,
+}
+
+impl<'a> Kernels<'a> {
+    /// The kernels of `layers` at thickness `d` for a spectrum starting at `q_low`, from `table`
+    /// where there is one.
+    pub(super) fn new(
+        table: Option<&'a KernelTable>,
+        layers: &'a Bilayer,
+        d: f64,
+        q_low: f64,
+    ) -> Self {
+        let source = match table {
+            Some(table) => Source::Table {
+                table,
+                d,
+                ln_d: d.ln(),
+            },
+            None => Source::Exact { layers, d },
+        };
+        let x_low = q_low * d;
+        let shift = if x_low > X_SHIFT { x_low } else { 0.0 };
+        Self { source, shift }
+    }
+
+    /// s: the f², g² returned are f² e^{2s}, g² e^{2s} (0 unless q_L d > [`X_SHIFT`]).
+    pub(super) fn shift(&self) -> f64 {
+        self.shift
+    }
+
     #[inline]
     pub(super) fn k(&self, q: f64, u: f64) -> f64 {
-        match *self {
-            Kernels::Table { table, d, ln_d } => table.k(q * d, u + ln_d),
-            Kernels::Exact { layers, d } => layers.s(q * d).powi(-2),
+        match self.source {
+            Source::Table { table, d, ln_d } => table.k(q * d, u + ln_d),
+            Source::Exact { layers, d } => layers.s(q * d).powi(-2),
         }
     }
 
-    /// f², g² at the node.
+    /// f² e^{2s}, g² e^{2s} at q·d > s from the undecayed forms (module doc).
+    fn shifted(&self, q: f64) -> (f64, f64) {
+        let (layers, d) = match self.source {
+            Source::Table { table, d, .. } => (table.layers(), d),
+            Source::Exact { layers, d } => (layers, d),
+        };
+        let x = q * d;
+        let (f, g) = layers.interface_undecayed(x);
+        let e = (-(x - self.shift).max(0.0)).exp();
+        ((f * e).powi(2), (g * e).powi(2))
+    }
+
+    /// f², g² at the node (times e^{2s}).
     #[inline]
     pub(super) fn interface(&self, q: f64, u: f64) -> (f64, f64) {
-        match *self {
-            Kernels::Table { table, d, ln_d } => table.interface(q * d, u + ln_d),
-            Kernels::Exact { layers, d } => {
+        if self.shift > 0.0 {
+            return self.shifted(q);
+        }
+        match self.source {
+            Source::Table { table, d, ln_d } => table.interface(q * d, u + ln_d),
+            Source::Exact { layers, d } => {
                 let r = layers.response(q * d);
                 (r.f * r.f, r.g * r.g)
             }
@@ -42,9 +103,9 @@ impl Kernels<'_> {
 
     /// S⁻² at the ascending nodes (q, u), into `out`.
     pub(super) fn k_many(&self, q: &[f64], u: &[f64], out: &mut [f64]) {
-        match *self {
-            Kernels::Table { table, d, ln_d } => table.k_many(Nodes { q, u, d, ln_d }, out),
-            Kernels::Exact { .. } => {
+        match self.source {
+            Source::Table { table, d, ln_d } => table.k_many(Nodes { q, u, d, ln_d }, out),
+            Source::Exact { .. } => {
                 for ((o, &q), &u) in out.iter_mut().zip(q).zip(u) {
                     *o = self.k(q, u);
                 }
@@ -52,13 +113,13 @@ impl Kernels<'_> {
         }
     }
 
-    /// f², g² at the ascending nodes (q, u), into `f2` and `g2`.
+    /// f², g² (times e^{2s}) at the ascending nodes (q, u), into `f2` and `g2`.
     pub(super) fn interface_many(&self, q: &[f64], u: &[f64], f2: &mut [f64], g2: &mut [f64]) {
-        match *self {
-            Kernels::Table { table, d, ln_d } => {
+        match self.source {
+            Source::Table { table, d, ln_d } if self.shift == 0.0 => {
                 table.interface_many(Nodes { q, u, d, ln_d }, f2, g2)
             }
-            Kernels::Exact { .. } => {
+            _ => {
                 for (((fo, go), &q), &u) in f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u) {
                     (*fo, *go) = self.interface(q, u);
                 }
@@ -66,11 +127,20 @@ impl Kernels<'_> {
         }
     }
 
+    /// S⁻², f², g² (the latter times e^{2s}) at the node.
     #[inline]
     pub(super) fn squared(&self, q: f64, u: f64) -> Squared {
-        match *self {
-            Kernels::Table { table, d, ln_d } => table.squared(q * d, u + ln_d),
-            Kernels::Exact { layers, d } => {
+        if self.shift > 0.0 {
+            let (f2, g2) = self.shifted(q);
+            return Squared {
+                k: self.k(q, u),
+                f2,
+                g2,
+            };
+        }
+        match self.source {
+            Source::Table { table, d, ln_d } => table.squared(q * d, u + ln_d),
+            Source::Exact { layers, d } => {
                 let r = layers.response(q * d);
                 Squared {
                     k: r.s.powi(-2),

@@ -18,7 +18,9 @@
 //!
 //! Every result is an [`Estimate`]: if the estimate misses rtol, the
 //! evaluation is repeated on grids with panels halved, up to [`MAX_REFINE`] times, and reports
-//! `ToleranceNotReached` if it still misses.
+//! `ToleranceNotReached` if it still misses. An interface stress also counts as converged when
+//! its error is below [`crate::prec::INTERFACE_ATOL`] (a few subnormal steps: a thick film's
+//! stress that rounds into the subnormals or to 0).
 
 mod distributions;
 mod engine;

@@ -238,14 +238,12 @@ impl Bilayer {
         self.numerator_s(&b) / self.denominator(&b)
     }
 
-    /// S, f and g at qd ≥ 0.
-    pub fn response(&self, qd: f64) -> Response {
-        debug_assert!(qd >= 0.0);
-        let x = qd;
-        let b = Blocks::new(x);
-        let (r, k0, k1, t) = (self.r, self.k0, self.k1, b.t);
+    /// The brackets of f and g in the stable forms (module doc): f = (1 + κ0) e^{−x} fb/D and
+    /// g = (1 + κ0) e^{−x} gb/D; returns (D, fb, gb), all > 0 and of order x at most.
+    fn interface_parts(&self, x: f64, b: &Blocks) -> (f64, f64, f64) {
+        let (r, k1, t) = (self.r, self.k1, b.t);
         let (nu0, nu1) = (self.film.poisson, self.substrate.poisson);
-        let den = self.denominator(&b);
+        let den = self.denominator(b);
         let fb = 2.0 * (1.0 - nu0) * (1.0 + t)
             + 2.0 * r * (1.0 - nu1) * b.one_minus_t
             + x * (b.one_minus_t + r * (k1 + t));
@@ -258,6 +256,28 @@ impl Bilayer {
             + 2.0 * nu0 * x * (1.0 + t)
             + r * x * (2.0 * (1.0 - 2.0 * nu1) + b.one_minus_t)
             + r * (1.0 - 2.0 * nu1) * b.one_minus_t;
+        (den, fb, gb)
+    }
+
+    /// f(qd)·e^{qd} and g(qd)·e^{qd}: f and g without their decay, finite and of order qd at
+    /// every qd ≥ 0 (f and g themselves leave the f64 range above qd ≈ 745). For integrals of
+    /// f², g² that apply e^{−2qd} relative to a reference point (the contact engine's interface
+    /// integrals of a thick film).
+    pub fn interface_undecayed(&self, qd: f64) -> (f64, f64) {
+        debug_assert!(qd >= 0.0);
+        let b = Blocks::new(qd);
+        let (den, fb, gb) = self.interface_parts(qd, &b);
+        let c = (1.0 + self.k0) / den;
+        (c * fb, c * gb)
+    }
+
+    /// S, f and g at qd ≥ 0.
+    pub fn response(&self, qd: f64) -> Response {
+        debug_assert!(qd >= 0.0);
+        let x = qd;
+        let b = Blocks::new(x);
+        let k0 = self.k0;
+        let (den, fb, gb) = self.interface_parts(x, &b);
         let pre = (1.0 + k0) * b.e1 / den;
         let (f, g) = if x > QD_ZERO {
             (0.0, 0.0)

@@ -497,7 +497,11 @@ pub fn files_table(j: &Judged) -> String {
 pub fn report(runs: &[SceneRun], seconds: f64, format: super::Format) -> Result<String, Error> {
     Ok(match format {
         super::Format::Table => summary(runs, seconds),
-        super::Format::Json => json(runs),
+        super::Format::Json => {
+            // JSON shows NaN as null: the CSV of the same numbers is checked instead.
+            super::finite_only(&csv(runs)?)?;
+            json(runs)
+        }
         super::Format::Csv => csv(runs)?,
     })
 }

@@ -183,6 +183,20 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
     };
     let plain = |x: f64| sig(x, 4);
     let mpa_unit = |x: f64| format!("{} MPa", mpa(x));
+    // A stress whose value or error in MPa would leave f64's normal range (a thick film's
+    // interface stress, or the subnormal error of one that flushed to 0) in Pa, where both keep
+    // their digits.
+    let pa_unit = |x: f64| match x {
+        0.0 => "0 Pa".to_string(),
+        _ => format!("{x:.3e} Pa"),
+    };
+    let tiny = |x: f64| x != 0.0 && (x * 1e-6).abs() < f64::MIN_POSITIVE;
+    let stress = |e: Option<Estimate>| -> &dyn Fn(f64) -> String {
+        match e {
+            Some(e) if tiny(e.value) || tiny(e.err) => &pa_unit,
+            _ => &mpa_unit,
+        }
+    };
     row(
         "A/A0 (real contact area fraction)",
         Some(c.area_fraction),
@@ -195,21 +209,29 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
         &mpa_unit,
     );
     row("sigma_rms top surface", c.sigma_rms_top, &mpa_unit);
-    row("sigma_rms interface", c.sigma_rms_interface, &mpa_unit);
+    row(
+        "sigma_rms interface",
+        c.sigma_rms_interface,
+        stress(c.sigma_rms_interface),
+    );
     row(
         "sigma_peak interface (exceedance epsilon)",
         ev.sigma_peak_interface,
         &mpa_unit,
     );
-    row("tau_rms interface", c.tau_rms_interface, &mpa_unit);
+    row(
+        "tau_rms interface",
+        c.tau_rms_interface,
+        stress(c.tau_rms_interface),
+    );
     row(
         "tau_peak interface (exceedance epsilon)",
         ev.tau_peak,
-        &mpa_unit,
+        stress(ev.tau_peak),
     );
     rows.push([
         "h_rms of the spectrum used".into(),
-        format!("{} um", um(outcome.h_rms)),
+        format!("{} µm", um(outcome.h_rms)),
         String::new(),
     ]);
     rows.push([
@@ -282,14 +304,11 @@ pub fn human(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> String {
     }
     out += &format!("{t}\n");
 
-    let governing =
-        |g: Option<CheckKind>| format!("governing check: {}", g.map_or("-", CheckKind::name));
+    // The check that binds at d_min: not the verdict's governing check, so worded apart from it.
+    let set_by = |g: Option<CheckKind>| format!("set by {}", g.map_or("-", CheckKind::name));
     if let Some(m) = &outcome.min_thickness {
         out += &match (m.thickness, m.governing) {
-            (None, g) => format!(
-                "minimum thickness: no thickness passes ({})\n",
-                governing(g)
-            ),
+            (None, g) => format!("minimum thickness: no thickness passes ({})\n", set_by(g)),
             (Some(d), _) if m.all_pass_to_floor => format!(
                 "minimum thickness: every thickness down to {} µm passes\n",
                 um(d.value)
@@ -298,7 +317,7 @@ pub fn human(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> String {
                 "minimum thickness: {} µm ± {} µm ({})\n",
                 um(d.value),
                 sig(d.err * 1e6, 2),
-                governing(g)
+                set_by(g)
             ),
         };
     }
@@ -309,8 +328,8 @@ pub fn human(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> String {
         "verdict: {}{}\n",
         if outcome.pass { "PASS" } else { "FAIL" },
         gov.map(|c| format!(
-            " ({}, utilisation {})",
-            governing(Some(c.kind)),
+            " (governing check: {}, utilisation {})",
+            c.kind.name(),
             utilisation_cell(c.margin)
         ))
         .unwrap_or_default()

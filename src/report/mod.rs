@@ -8,6 +8,7 @@ use comfy_table::{ContentArrangement, Table, presets::UTF8_FULL_CONDENSED};
 
 pub mod batch;
 pub mod check;
+pub mod finite;
 pub mod html;
 pub mod junit;
 pub mod materials;
@@ -47,43 +48,10 @@ pub enum Format {
     Csv,
 }
 
-/// Refuse a report that shows a number that is not finite: no command prints NaN or inf. A
-/// table cell or CSV field that reads `NaN`, `inf` or `-inf` is a numerical failure naming its
-/// row (the row's first cell: the quantity, or the q or q·d of a data row) and its column.
+/// Refuse a report that shows a number that is not finite: no command prints NaN or inf
+/// ([`finite`], the one guard every output goes through).
 pub fn finite_only(text: &str) -> Result<(), Error> {
-    let cells = |line: &str| -> Vec<String> {
-        line.split(['│', '┆', '|', ','])
-            .map(|c| c.trim().to_string())
-            .filter(|c| !c.is_empty())
-            .collect()
-    };
-    let mut header: Vec<String> = Vec::new();
-    for line in text.lines() {
-        let row = cells(line);
-        if header.is_empty() && row.len() > 1 {
-            header = row.clone();
-        }
-        let bad = row.iter().position(|c| {
-            matches!(
-                c.to_ascii_lowercase().as_str(),
-                "nan" | "inf" | "-inf" | "+inf"
-            )
-        });
-        if let Some(i) = bad {
-            let column = header
-                .get(i)
-                .filter(|_| i > 0)
-                .map_or(String::new(), |h| format!(", column {h}"));
-            return Err(Error::Numerical {
-                what: "the report",
-                detail: format!(
-                    "{} is {}{column}; a result that is not finite is not printed",
-                    row[0], row[i]
-                ),
-            });
-        }
-    }
-    Ok(())
+    finite::check_text(text)
 }
 
 /// `x` with `digits` significant digits: fixed notation for 1e-3 ≤ |x| < 1e6, else scientific.

@@ -68,7 +68,7 @@ mod imp {
     fn write(path: &Path, height: usize, columns: Vec<Column>) -> Result<(), Error> {
         let mut df = DataFrame::new(height, columns).map_err(|e| polars_error(path, e))?;
         let mut failure = None;
-        crate::report::write_with(path, |w| {
+        crate::report::write::write_bytes_with(path, |w| {
             ParquetWriter::new(w)
                 .finish(&mut df)
                 .map(|_| ())

@@ -82,6 +82,8 @@ pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
             Ok(format!("{caption}\n{t}\n"))
         }
         Format::Json => {
+            // JSON shows NaN as null: the CSV of the same numbers is checked instead.
+            super::finite_only(&sweep(rows, Format::Csv)?)?;
             let list: Vec<Value> = rows
                 .iter()
                 .map(|ev| {

@@ -17,6 +17,7 @@
 //! `<stdout>`; a reader that went away (`| head -1`) is a broken pipe, which
 //! [`is_broken_pipe`] recognises so that the command line can end quietly.
 
+use super::finite::Finite;
 use crate::error::Error;
 use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};
@@ -148,8 +149,22 @@ fn io_error(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
     }
 }
 
-/// Write a file with `body` (see the module docs for how).
+/// Write a text file with `body` (see the module docs for how), refusing it at the first
+/// line that shows a non-finite number ([`super::finite`]): the old file stays, and no partial
+/// new one is left.
 pub fn write_with(
+    path: &Path,
+    body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<(), Error> {
+    write_bytes_with(path, |w| {
+        let mut guarded = Finite::new(w);
+        body(&mut guarded)?;
+        guarded.finish()
+    })
+}
+
+/// Write a binary file (Parquet) with `body` (see the module docs for how).
+pub fn write_bytes_with(
     path: &Path,
     body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<(), Error> {
@@ -181,7 +196,7 @@ pub fn write_file(path: &Path, contents: &str) -> Result<(), Error> {
 }
 
 /// Print `text` on standard output, unless it shows a number that is not finite
-/// ([`super::finite_only`]). A write error is an [`Error::Io`] on `<stdout>`.
+/// ([`super::finite`]). A write error is an [`Error::Io`] on `<stdout>`.
 pub fn stdout(text: &str) -> Result<(), Error> {
     super::finite_only(text)?;
     let mut out = std::io::stdout().lock();
@@ -234,6 +249,30 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&p).unwrap(), "old");
         assert_eq!(names(dir.path()), ["out.csv"]);
         assert!(!live().iter().any(|p| p.starts_with(dir.path())));
+    }
+
+    /// A text file whose body shows a non-finite number is refused at that line: the error
+    /// names the row and column, the old file stays, no temporary is left. A binary body is
+    /// not read as text.
+    #[test]
+    fn a_non_finite_number_is_not_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("out.csv");
+        std::fs::write(&p, "old").unwrap();
+        let e = write_with(&p, |w| {
+            w.write_all(b"q,C\n1e5,1e-20\n")?;
+            w.write_all(b"2e5,inf\n3e5,1e-21\n")
+        })
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("out.csv") && e.contains("2e5 is inf, column C"),
+            "{e}"
+        );
+        assert_eq!(std::fs::read_to_string(&p).unwrap(), "old");
+        assert_eq!(names(dir.path()), ["out.csv"]);
+        write_bytes_with(&p, |w| w.write_all(b"a,NaN\n")).unwrap();
+        assert_eq!(std::fs::read_to_string(&p).unwrap(), "a,NaN\n");
     }
 
     #[cfg(unix)]

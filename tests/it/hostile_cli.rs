@@ -252,3 +252,44 @@ fn a_duplicate_scene_key_is_named() {
     let o = run(&["check", scene.to_str().unwrap()]);
     refused(&o, &["dup.toml:3:", "duplicate key `material`"]);
 }
+
+/// A value of the wrong TOML type (a boolean, a table, a list of numbers, where a number, a
+/// quantity string or a list of names belongs): the message names the file, the line, the
+/// dotted key and what was expected, not serde's "did not match any variant of untagged enum".
+#[test]
+fn a_value_of_the_wrong_type_names_its_key_and_what_was_expected() {
+    let base = std::fs::read_to_string(SCENE).unwrap();
+    let d = tempfile::tempdir().unwrap();
+    let cases = [
+        (
+            "thickness = \"10 um\"",
+            "thickness = true",
+            "film.thickness: got true (expected a length",
+        ),
+        (
+            "thickness = \"10 um\"",
+            "thickness = { value = 10 }",
+            "film.thickness: invalid type: a table, expected a number",
+        ),
+        (
+            "pressure = \"0.1 MPa\"",
+            "pressure = 2024-01-01",
+            "load.pressure: invalid type: a date-time, expected a number",
+        ),
+        (
+            "checks = [",
+            "checks = [1, ",
+            "criteria.checks: invalid type: integer `1`, expected a list of strings",
+        ),
+    ];
+    for (i, (from, to, want)) in cases.into_iter().enumerate() {
+        assert!(base.contains(from));
+        let line = 1 + base[..base.find(from).unwrap()].matches('\n').count();
+        let scene = d.path().join(format!("t{i}.toml"));
+        std::fs::write(&scene, base.replacen(from, to, 1)).unwrap();
+        let o = run(&["check", scene.to_str().unwrap()]);
+        refused(&o, &[&format!("t{i}.toml:{line}: "), want]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!err.contains("untagged"), "{err}");
+    }
+}

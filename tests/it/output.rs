@@ -201,3 +201,56 @@ fn sigterm_while_writing_leaves_no_temporary_and_no_partial_file() {
     );
     assert!(!out.exists());
 }
+
+/// Every output goes through the one guard against NaN and inf (`report::finite`): standard
+/// output through `report::stdout` (or, streamed, a `report::finite::Finite` writer), files through
+/// `report::write_with` (text, checked line by line) or `write_bytes_with` (Parquet). By
+/// construction: no source file outside `report/write.rs` opens standard output or a file for
+/// writing, or prints to standard output, other than through those (test modules aside: they start at
+/// `#[cfg(test)]`).
+#[test]
+fn every_output_goes_through_the_finite_guard() {
+    fn sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                sources(&p, out);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                out.push(p);
+            }
+        }
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    sources(&root, &mut files);
+    assert!(files.len() > 50);
+    let forbidden = [
+        "io::stdout()",
+        "File::create",
+        "fs::write(",
+        "OpenOptions",
+        "println!",
+        "print!(",
+    ];
+    let mut found = Vec::new();
+    for f in files {
+        if f.ends_with("report/write.rs") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&f).unwrap();
+        let code = text.split("#[cfg(test)]").next().unwrap();
+        for (i, line) in code.lines().enumerate() {
+            // Messages on standard error are not reports.
+            let line = line.replace("eprintln!", "");
+            let streamed = line.contains("Finite::new(std::io::stdout()");
+            if !streamed && forbidden.iter().any(|p| line.contains(p)) {
+                found.push(format!("{}:{}: {}", f.display(), i + 1, line.trim()));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "output around the guard:\n{}",
+        found.join("\n")
+    );
+}
