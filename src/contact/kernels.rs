@@ -1,8 +1,9 @@
 //! The layer kernels S⁻², f², g² of one material pair at the quadrature nodes for one
 //! thickness (eqs. B8–B12 take them at q·d): from the pair's [`KernelTable`] (checked against
 //! the exact forms to [`crate::prec::TABLE_RTOL`]), or the exact forms where no table resolves
-//! them. The batch forms (`k_many`, `interface_many`) evaluate all nodes of a range at once.
+//! them; or a layer stack's S⁻² and one interface's f_k², g_k² (`layer::stack`). The batch forms (`k_many`, `interface_many`) evaluate all nodes of a range at once.
 
+use crate::layer::stack::{MAX_LAYERS, Stack};
 use crate::layer::{Bilayer, KernelTable, Nodes, Squared};
 
 /// The layer kernels at nodes q (with u = ln q) for one thickness: tabulated, or exact when no
@@ -17,6 +18,19 @@ pub(super) enum Kernels<'a> {
         layers: &'a Bilayer,
         d: f64,
     },
+    /// A layer stack's S⁻² and, at its interface `k` (0 = below the top layer), f_k², g_k²,
+    /// exact at q ([`Stack::response_into`]).
+    Stack {
+        stack: &'a Stack,
+        k: usize,
+    },
+}
+
+/// S and (f_k, g_k) of a stack at q.
+fn stack_at(stack: &Stack, k: usize, q: f64) -> (f64, f64, f64) {
+    let mut out = [(0.0, 0.0); MAX_LAYERS];
+    let s = stack.response_into(q, &mut out[..stack.layers().len()]);
+    (s, out[k].0, out[k].1)
 }
 
 impl Kernels<'_> {
@@ -25,6 +39,7 @@ impl Kernels<'_> {
         match *self {
             Kernels::Table { table, d, ln_d } => table.k(q * d, u + ln_d),
             Kernels::Exact { layers, d } => layers.s(q * d).powi(-2),
+            Kernels::Stack { stack, k } => stack_at(stack, k, q).0.powi(-2),
         }
     }
 
@@ -37,6 +52,10 @@ impl Kernels<'_> {
                 let r = layers.response(q * d);
                 (r.f * r.f, r.g * r.g)
             }
+            Kernels::Stack { stack, k } => {
+                let (_, f, g) = stack_at(stack, k, q);
+                (f * f, g * g)
+            }
         }
     }
 
@@ -44,7 +63,7 @@ impl Kernels<'_> {
     pub(super) fn k_many(&self, q: &[f64], u: &[f64], out: &mut [f64]) {
         match *self {
             Kernels::Table { table, d, ln_d } => table.k_many(Nodes { q, u, d, ln_d }, out),
-            Kernels::Exact { .. } => {
+            Kernels::Exact { .. } | Kernels::Stack { .. } => {
                 for ((o, &q), &u) in out.iter_mut().zip(q).zip(u) {
                     *o = self.k(q, u);
                 }
@@ -58,7 +77,7 @@ impl Kernels<'_> {
             Kernels::Table { table, d, ln_d } => {
                 table.interface_many(Nodes { q, u, d, ln_d }, f2, g2)
             }
-            Kernels::Exact { .. } => {
+            Kernels::Exact { .. } | Kernels::Stack { .. } => {
                 for (((fo, go), &q), &u) in f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u) {
                     (*fo, *go) = self.interface(q, u);
                 }
@@ -76,6 +95,14 @@ impl Kernels<'_> {
                     k: r.s.powi(-2),
                     f2: r.f * r.f,
                     g2: r.g * r.g,
+                }
+            }
+            Kernels::Stack { stack, k } => {
+                let (s, f, g) = stack_at(stack, k, q);
+                Squared {
+                    k: s.powi(-2),
+                    f2: f * f,
+                    g2: g * g,
                 }
             }
         }

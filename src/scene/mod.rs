@@ -41,13 +41,16 @@
 //! - `keys`: the table of keys ([`KEYS`]: name, flag, value kind, range, alternatives, help)
 //!   and the scene as written ([`RawScene`]).
 //! - `resolve`: the validation into a [`Scene`] ([`resolve()`]).
+//! - `layers`: the `[[layer]]` tables of a layer stack ([`SceneLayer`]).
 //! - `roughness`: the roughness ([`Roughness`]), its spectrum, and the validation of its keys.
 
 mod keys;
+mod layers;
 mod resolve;
 mod roughness;
 
-pub use keys::{Bound, Choice, KEYS, Key, Q_RANGE, Range, RawScene, Spec, Value};
+pub use keys::{Bound, Choice, KEYS, Key, Q_RANGE, Range, RawLayer, RawScene, Spec, Value};
+pub use layers::SceneLayer;
 pub use resolve::resolve;
 pub use roughness::{PsdFormat, Roughness, RoughnessSource, Scale};
 
@@ -73,6 +76,14 @@ pub struct Scene {
     pub thickness: Option<f64>,
     pub substrate: Material,
     pub bond: Bond,
+    /// The layers of a stack of two or more, top first (`[[layer]]`); empty for a film scene
+    /// (one `[[layer]]` is the film). With layers, `film` and `thickness` are the top layer's
+    /// and `bond` the bottom layer's.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub layers: Vec<SceneLayer>,
+    /// The layer whose minimum thickness is sought (`criteria.thickness_of`; 0 = the top).
+    #[serde(skip)]
+    pub thickness_of: usize,
     /// Nominal pressure p0 (Pa).
     pub pressure: f64,
     pub criteria: Criteria,
@@ -101,6 +112,11 @@ impl Scene {
                 ..self.clone()
             })
             .collect()
+    }
+
+    /// Whether the scene is a stack of two or more layers ([`Scene::layers`]).
+    pub fn is_stack(&self) -> bool {
+        !self.layers.is_empty()
     }
 
     /// The design (without thickness) for [`crate::check::Checker`].

@@ -4,6 +4,7 @@
 
 use super::Scene;
 use super::keys::{Choice, Key, RawScene};
+use super::layers::{resolve_layers, thickness_of};
 use super::roughness::resolve_roughness;
 use crate::check::{CheckKind, Checks, Criteria};
 use crate::error::Error;
@@ -64,10 +65,29 @@ pub fn resolve(
     let coatcheck_version = pinned_version(raw, ctx)?;
     check_contradictions(r)?;
     let roughness = resolve_roughness(r)?;
-    let film = resolve_material(r, library, Role::FILM)?;
-    let thickness = r.quantity(Key::Thickness)?;
+    let mut layers = resolve_layers(&raw.layers, ctx, library)?;
+    let thickness_of = thickness_of(&layers, r.field(Key::ThicknessOf), ctx)?;
+    let (film, thickness, bond) = match layers.first() {
+        None => (
+            resolve_material(r, library, Role::FILM)?,
+            r.quantity(Key::Thickness)?,
+            resolve_bond(r, library)?,
+        ),
+        Some(top) => {
+            check_no_film_keys(r)?;
+            let bottom = layers.last().expect("a first layer");
+            (
+                top.material.clone(),
+                Some(top.thickness),
+                bottom.bond.clone(),
+            )
+        }
+    };
+    // One layer is the [film] scene itself.
+    if layers.len() == 1 {
+        layers.clear();
+    }
     let substrate = resolve_material(r, library, Role::SUBSTRATE)?;
-    let bond = resolve_bond(r, library)?;
     let pressure = r.quantity(Key::Pressure)?.ok_or_else(|| {
         ctx.missing(
             Key::Pressure.name(),
@@ -97,10 +117,34 @@ pub fn resolve(
         thickness,
         substrate,
         bond,
+        layers,
+        thickness_of,
         pressure,
         criteria,
         settings,
     })
+}
+
+/// A stack's layers are its film and bonds: `[film]` and `[bond]` keys (or their flags) beside
+/// `[[layer]]` tables are a contradiction.
+fn check_no_film_keys(r: Reader<'_>) -> Result<(), Error> {
+    let film_keys = [
+        Key::FilmMaterial,
+        Key::FilmYoungsModulus,
+        Key::FilmPoissonRatio,
+        Key::Thickness,
+        Key::BondMaterial,
+        Key::ShearStrength,
+    ];
+    match film_keys.iter().find_map(|&k| r.field(k).map(|f| (k, f))) {
+        Some((k, f)) => Err(r.error(
+            k,
+            f,
+            "contradicts the [[layer]] tables (a stack gives each layer's material, thickness \
+             and bond in its [[layer]] table)",
+        )),
+        None => Ok(()),
+    }
 }
 
 fn check_schema_version(raw: &RawScene, ctx: Ctx<'_>) -> Result<(), Error> {

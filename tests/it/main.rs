@@ -28,6 +28,7 @@ mod psd_read;
 mod report_browser;
 mod schema;
 mod stack;
+mod stack_scene;
 mod tail;
 mod tangential;
 mod topography;
