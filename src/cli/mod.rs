@@ -3,6 +3,7 @@
 
 mod check;
 mod check_args;
+mod check_stack;
 mod materials;
 
 use clap::{Parser, Subcommand};

@@ -54,6 +54,7 @@ pub use layers::SceneLayer;
 pub use resolve::resolve;
 pub use roughness::{PsdFormat, Roughness, RoughnessSource, Scale};
 
+use crate::check::stack::{StackDesign, StackLayer};
 use crate::check::{Criteria, Design};
 use crate::error::Error;
 use crate::layer::Bilayer;
@@ -127,6 +128,37 @@ impl Scene {
             yield_strength: self.substrate.yield_strength,
             bond_strength: self.bond.shear_strength,
             criteria: self.criteria,
+        }
+    }
+
+    /// The stack design (layers top first, their bonds, `criteria.thickness_of`) for
+    /// [`crate::check::stack::StackChecker`]; a film scene is a stack of one layer.
+    pub fn stack_design(&self) -> StackDesign {
+        let layers = if self.layers.is_empty() {
+            vec![StackLayer {
+                name: self.film.name.clone(),
+                material: self.film.elastic,
+                thickness: self.thickness.unwrap_or(f64::NAN),
+                bond_strength: self.bond.shear_strength,
+            }]
+        } else {
+            self.layers
+                .iter()
+                .map(|l| StackLayer {
+                    name: l.name.clone(),
+                    material: l.material.elastic,
+                    thickness: l.thickness,
+                    bond_strength: l.bond.shear_strength,
+                })
+                .collect()
+        };
+        StackDesign {
+            layers,
+            substrate: self.substrate.elastic,
+            pressure: self.pressure,
+            yield_strength: self.substrate.yield_strength,
+            criteria: self.criteria,
+            thickness_of: self.thickness_of,
         }
     }
 
