@@ -5,6 +5,8 @@
 
 use crate::layer::stack::{MAX_LAYERS, Stack};
 use crate::layer::{Bilayer, KernelTable, Nodes, Squared};
+use std::cell::RefCell;
+use std::collections::HashMap;
 
 /// The layer kernels at nodes q (with u = ln q) for one thickness: tabulated, or exact when no
 /// table resolves them (`layer::KernelTable`).
@@ -19,18 +21,28 @@ pub(super) enum Kernels<'a> {
         d: f64,
     },
     /// A layer stack's S⁻² and, at its interface `k` (0 = below the top layer), f_k², g_k²,
-    /// exact at q ([`Stack::response_into`]).
+    /// exact at q ([`Stack::response_into`]), each q evaluated once for all interfaces
+    /// (`memo`).
     Stack {
         stack: &'a Stack,
         k: usize,
+        memo: &'a StackMemo,
     },
 }
 
+/// A stack's S and every (f_k, g_k) at the q already evaluated (by q's bits): the evaluations
+/// of the interfaces of one stack share their nodes.
+pub(super) type StackMemo = RefCell<HashMap<u64, (f64, [(f64, f64); MAX_LAYERS])>>;
+
 /// S and (f_k, g_k) of a stack at q.
-fn stack_at(stack: &Stack, k: usize, q: f64) -> (f64, f64, f64) {
-    let mut out = [(0.0, 0.0); MAX_LAYERS];
-    let s = stack.response_into(q, &mut out[..stack.layers().len()]);
-    (s, out[k].0, out[k].1)
+fn stack_at(stack: &Stack, memo: &StackMemo, k: usize, q: f64) -> (f64, f64, f64) {
+    let mut memo = memo.borrow_mut();
+    let (s, out) = memo.entry(q.to_bits()).or_insert_with(|| {
+        let mut out = [(0.0, 0.0); MAX_LAYERS];
+        let s = stack.response_into(q, &mut out[..stack.layers().len()]);
+        (s, out)
+    });
+    (*s, out[k].0, out[k].1)
 }
 
 impl Kernels<'_> {
@@ -39,7 +51,7 @@ impl Kernels<'_> {
         match *self {
             Kernels::Table { table, d, ln_d } => table.k(q * d, u + ln_d),
             Kernels::Exact { layers, d } => layers.s(q * d).powi(-2),
-            Kernels::Stack { stack, k } => stack_at(stack, k, q).0.powi(-2),
+            Kernels::Stack { stack, k, memo } => stack_at(stack, memo, k, q).0.powi(-2),
         }
     }
 
@@ -52,8 +64,8 @@ impl Kernels<'_> {
                 let r = layers.response(q * d);
                 (r.f * r.f, r.g * r.g)
             }
-            Kernels::Stack { stack, k } => {
-                let (_, f, g) = stack_at(stack, k, q);
+            Kernels::Stack { stack, k, memo } => {
+                let (_, f, g) = stack_at(stack, memo, k, q);
                 (f * f, g * g)
             }
         }
@@ -97,8 +109,8 @@ impl Kernels<'_> {
                     g2: r.g * r.g,
                 }
             }
-            Kernels::Stack { stack, k } => {
-                let (s, f, g) = stack_at(stack, k, q);
+            Kernels::Stack { stack, k, memo } => {
+                let (s, f, g) = stack_at(stack, memo, k, q);
                 Squared {
                     k: s.powi(-2),
                     f2: f * f,

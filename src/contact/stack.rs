@@ -10,9 +10,11 @@
 //! for the stacks of the tests, `tests/it/stack_scene.rs`). G, A/A0 and σ_rms at the top are
 //! the first interface's evaluation's (each evaluation integrates the same S⁻² on the same
 //! grids). The kernels' error bound [`STACK_RTOL`] enters the rounding floor of every estimate.
+//! The stack's kernels are evaluated once per node for all interfaces (one call gives S and
+//! every f_k, g_k) and kept for the evaluation.
 
 use super::engine::At;
-use super::kernels::Kernels;
+use super::kernels::{Kernels, StackMemo};
 use super::{Contact, Engine, Request};
 use crate::error::Error;
 use crate::layer::stack::{STACK_RTOL, Stack};
@@ -56,6 +58,7 @@ impl Engine {
         let e_top = stack.layers()[0].material.e_star();
         let mut top = None;
         let mut interfaces = Vec::with_capacity(stack.layers().len());
+        let memo = StackMemo::default();
         for (k, depth) in stack.depths().into_iter().enumerate() {
             let req = Request {
                 sigma_top: request.sigma_top && k == 0,
@@ -68,7 +71,12 @@ impl Engine {
                 p0,
                 kernel_rtol: STACK_RTOL,
             };
-            let c = self.refine(&Kernels::Stack { stack, k }, at, req)?;
+            let kernels = Kernels::Stack {
+                stack,
+                k,
+                memo: &memo,
+            };
+            let c = self.refine(&kernels, at, req)?;
             interfaces.push(InterfaceContact {
                 depth,
                 sigma_rms: c.sigma_rms_interface,

@@ -404,3 +404,62 @@ fn stack_integrals_match_mpmath() {
         }
     }
 }
+
+/// The exact solver on a stack: a rubber layer split in two (4 + 6 µm) on steel gives the
+/// contact of the 10 µm film (`bem::solve` with the Bilayer's kernels) and, at the bottom
+/// interface, its interface fields, to 1e-7 of the peak pressure (the solver's tolerance); at
+/// the upper interface the normal stress has mean p0 and the shear is finite and non-zero.
+#[test]
+fn exact_solver_on_a_split_layer() {
+    use coatcheck::bem::{self, BemSettings, Surface};
+    use std::f64::consts::PI;
+    let (n, l) = (32usize, 1e-4);
+    let mut h = Vec::with_capacity(n * n);
+    for iy in 0..n {
+        for ix in 0..n {
+            let (x, y) = (ix as f64 / n as f64, iy as f64 / n as f64);
+            h.push(
+                1e-7 * (2.0 * PI * (x + 2.0 * y)).cos()
+                    + 4e-8 * (2.0 * PI * (5.0 * x - 3.0 * y)).sin(),
+            );
+        }
+    }
+    let surface = Surface::new(h, n, n, l / n as f64, l / n as f64).unwrap();
+    let settings = BemSettings {
+        gap_tol: 1e-12,
+        ..BemSettings::default()
+    };
+    let (rubber, steel) = (el(1e6, 0.5), el(2e11, 0.3));
+    let film = Stack::new(Bilayer::new(rubber, steel), 10e-6).unwrap();
+    let p0 = 2e4;
+    let want = bem::solve(&surface, &film, p0, &settings).unwrap();
+    let want_fields = bem::interface_fields(&want, &film).unwrap();
+    let split = layers(&[(1e6, 0.5, 4e-6), (1e6, 0.5, 6e-6)], steel);
+    let got = bem::solve_stack(&surface, &split, p0, &settings).unwrap();
+    let fields = bem::stack_interface_fields(&got, &split).unwrap();
+    assert_eq!(fields.len(), 2);
+    let scale = want.pressure.iter().fold(0.0f64, |m, p| m.max(*p));
+    let close = |a: &[f64], b: &[f64], what: &str| {
+        for (x, y) in a.iter().zip(b) {
+            assert!((x - y).abs() <= 1e-7 * scale, "{what}: {x} vs {y}");
+        }
+    };
+    close(&got.pressure, &want.pressure, "pressure");
+    close(
+        &fields[1].normal,
+        &want_fields.normal,
+        "normal at the bottom",
+    );
+    close(
+        &fields[1].shear_x,
+        &want_fields.shear_x,
+        "shear_x at the bottom",
+    );
+    close(
+        &fields[1].shear_y,
+        &want_fields.shear_y,
+        "shear_y at the bottom",
+    );
+    assert!((fields[0].normal_stats.mean - p0).abs() <= 1e-9 * p0);
+    assert!(fields[0].shear_stats.rms > 0.0 && fields[0].shear_stats.rms.is_finite());
+}
