@@ -108,6 +108,35 @@ impl StackChecker {
         design: StackDesign,
         settings: Settings,
     ) -> Result<Self, Error> {
+        let c = &design.criteria;
+        if !(c.epsilon.is_finite() && c.epsilon > 0.0 && c.epsilon < 1.0) {
+            return Err(Error::invalid("epsilon", c.epsilon, "0 < epsilon < 1"));
+        }
+        if !(c.safety_factor.is_finite() && c.safety_factor > 0.0) {
+            return Err(Error::invalid(
+                "safety factor",
+                c.safety_factor,
+                "a finite factor > 0",
+            ));
+        }
+        if !(design.pressure.is_finite() && design.pressure > 0.0) {
+            return Err(Error::invalid(
+                "pressure",
+                design.pressure,
+                "a finite nominal pressure > 0 in Pa",
+            ));
+        }
+        if let Some(l) = design
+            .layers
+            .iter()
+            .find(|l| !(l.bond_strength.is_finite() && l.bond_strength > 0.0))
+        {
+            return Err(Error::invalid(
+                "bond shear strength",
+                l.bond_strength,
+                "a finite strength > 0 in Pa",
+            ));
+        }
         if design.thickness_of >= design.layers.len() {
             return Err(Error::invalid(
                 "thickness_of",
@@ -276,9 +305,7 @@ impl StackChecker {
     /// The full check at the design's thicknesses.
     pub fn run(&self) -> Result<StackOutcome, Error> {
         let d = &self.design;
-        let mut req = Request::all();
-        req.sigma_interface = true;
-        req.tau_interface = true;
+        let req = Request::all();
         let contact = self.engine.evaluate_stack(
             &self.stack(d.layers[d.thickness_of].thickness)?,
             d.pressure,

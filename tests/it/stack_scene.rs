@@ -463,3 +463,49 @@ fn exact_solver_on_a_split_layer() {
     assert!((fields[0].normal_stats.mean - p0).abs() <= 1e-9 * p0);
     assert!(fields[0].shear_stats.rms > 0.0 && fields[0].shear_stats.rms.is_finite());
 }
+
+/// The interface tail's cut (src/contact/evaluate.rs, "Interface tail", with z_k for d) assumes
+/// f_k² and g_k² do not increase beyond q·z_k = 20: checked on 4000 log-spaced q per interface
+/// up to q·z_k = 700 for the stacks of these tests.
+#[test]
+fn interface_kernels_decrease_beyond_the_cut() {
+    let steel = el(2e11, 0.3);
+    let mixed: Vec<(f64, f64, f64)> = (0..10)
+        .map(|k| {
+            if k % 2 == 0 {
+                (1e6, 0.5, 2e-6)
+            } else {
+                (3e9, 0.35, 1e-6)
+            }
+        })
+        .collect();
+    let stacks = [
+        layers(&[(1e6, 0.5, 1e-5), (3e9, 0.35, 1e-5)], steel),
+        layers(&[(5e8, 0.46, 5e-6), (2e6, 0.4998, 1e-4)], el(2e11, 0.29)),
+        layers(
+            &[(1e6, 0.5, 3e-6), (1e14, 0.5, 1e-6), (1e6, 0.5, 3e-6)],
+            el(1e14, 0.5),
+        ),
+        layers(
+            &[(1e14, 0.5, 1e-7), (1e6, 0.5, 5e-6), (1e14, 0.5, 1e-6)],
+            el(1e6, 0.5),
+        ),
+        layers(&mixed, steel),
+    ];
+    for s in &stacks {
+        for (k, z) in s.depths().into_iter().enumerate() {
+            let mut last = (f64::INFINITY, f64::INFINITY);
+            for i in 0..4000 {
+                let x = 20.0 * 35f64.powf(i as f64 / 3999.0);
+                let (f, g) = s.response(x / z).interfaces[k];
+                let now = (f * f, g * g);
+                assert!(
+                    now.0 <= last.0 * (1.0 + 1e-12) && now.1 <= last.1 * (1.0 + 1e-12),
+                    "{:?} interface {k} at q z = {x}: {now:?} after {last:?}",
+                    s.layers()
+                );
+                last = now;
+            }
+        }
+    }
+}
