@@ -14,15 +14,18 @@
 //!   utilisation tends to that of the stack with a half-space of the varied layer's material,
 //!   which the bulk bound evaluates.
 //!
+//! The validity warnings are the film's ([`super`], "Validity"), with the bottom interface's
+//! depth for the film thickness.
+//!
 //! Every check carries the interface's name ("bond-shear" at the interface below layer k is
 //! named after layer k).
 
 use super::criteria::{limit, upper_check, yield_governing};
 use super::{
-    BULK_QD, CheckKind, CheckResult, Criteria, MinThickness, THINNEST, Utilisation,
-    search_min_thickness,
+    BULK_QD, CheckKind, CheckResult, Criteria, FULL_CONTACT_WARN, LOW_OCTAVE_WARN, MinThickness,
+    SLOPE_WARN, THINNEST, Utilisation, search_min_thickness,
 };
-use crate::contact::{self, Engine, NormalStress, Request, StackContact};
+use crate::contact::{self, Contact, Engine, NormalStress, Request, StackContact};
 use crate::error::Error;
 use crate::layer::Elastic;
 use crate::layer::stack::{Layer, Stack};
@@ -100,6 +103,8 @@ pub struct StackChecker {
     design: StackDesign,
     q_low: f64,
     q_high: f64,
+    /// Rms slope ξ of the spectrum.
+    rms_slope: f64,
 }
 
 impl StackChecker {
@@ -162,6 +167,7 @@ impl StackChecker {
             design,
             q_low,
             q_high,
+            rms_slope: spectrum.slope_sq().value.sqrt(),
         })
     }
 
@@ -302,6 +308,40 @@ impl StackChecker {
         search_min_thickness(lo, hi, |d| self.utilisation(d))
     }
 
+    /// Where the theory is strained, as for a film ([`super`], "Validity"), with the depth of
+    /// the bottom interface for the film thickness.
+    fn validity_warnings(&self, c: &Contact) -> Vec<String> {
+        let mut w = Vec::new();
+        let depth: f64 = self.design.layers.iter().map(|l| l.thickness).sum();
+        if self.q_high > 2.0 * self.q_low && c.low_octave_share > LOW_OCTAVE_WARN {
+            w.push(format!(
+                "{:.0} % of G(q1) (the contact stress variance) comes from the lowest octave of the \
+                 spectrum (q_L z = {:.3} at the bottom interface): a few long waves carry the \
+                 contact, where Persson's theory under-estimates the contact area, so the \
+                 contact-pressure figures (mean pressure in contact, sigma peaks) are \
+                 conservative; the result also depends on where the data start (q_min)",
+                100.0 * c.low_octave_share,
+                self.q_low * depth
+            ));
+        }
+        if c.area_fraction.value > FULL_CONTACT_WARN {
+            w.push(format!(
+                "near full contact (A/A0 = {:.3}): the rms stresses tend to the exact full-contact \
+                 values, but the partial-contact distribution of eq. (B11) and the peak values \
+                 drawn from it are outside the range the theory was built and tested for",
+                c.area_fraction.value
+            ));
+        }
+        if self.rms_slope > SLOPE_WARN {
+            w.push(format!(
+                "rms slope {:.3} > 1: the theory is small-slope linear elasticity; at \
+                 such slopes the coating's strains are large and the stresses are indicative only",
+                self.rms_slope
+            ));
+        }
+        w
+    }
+
     /// The full check at the design's thicknesses.
     pub fn run(&self) -> Result<StackOutcome, Error> {
         let d = &self.design;
@@ -370,6 +410,7 @@ impl StackChecker {
                 });
             }
         }
+        warnings.extend(self.validity_warnings(&contact.top));
         let pass = checks.iter().all(|c| c.result.pass);
         Ok(StackOutcome {
             contact,
