@@ -34,6 +34,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "carbon-steel.toml",
         include_str!("../materials/carbon-steel.toml"),
     ),
+    (
+        "chemlok-type.toml",
+        include_str!("../materials/chemlok-type.toml"),
+    ),
     ("copper.toml", include_str!("../materials/copper.toml")),
     (
         "cyanoacrylate.toml",
@@ -41,6 +45,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
     ),
     ("epdm.toml", include_str!("../materials/epdm.toml")),
     ("epoxy.toml", include_str!("../materials/epoxy.toml")),
+    (
+        "epoxy-primer.toml",
+        include_str!("../materials/epoxy-primer.toml"),
+    ),
     ("fkm.toml", include_str!("../materials/fkm.toml")),
     ("glass.toml", include_str!("../materials/glass.toml")),
     (

@@ -96,6 +96,14 @@ fn origin(scene: &Scene) -> String {
 
 /// The checker of a scene with one roughness file, and its reader's warnings.
 pub fn checker(scene: &Scene) -> Result<(Checker, Vec<String>), Error> {
+    if scene.is_stack() {
+        return Err(Error::Value {
+            origin: origin(scene),
+            msg: "a layer stack ([[layer]] tables) is checked on its own: coatcheck check SCENE \
+                  (not in a batch, a sweep or the HTML report)"
+                .into(),
+        });
+    }
     let (spectrum, warnings) = scene.roughness.spectrum()?;
     Ok((
         Checker::new(&spectrum, scene.design(), scene.settings)?,

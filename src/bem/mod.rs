@@ -39,8 +39,13 @@
 //! τ(q) = (σ_xz, σ_yz)(q) = i g(qd) q̂ p(q), i.e. p = a·cos(qx) gives τ_x = −g·a·sin(qx).
 //! The interface normal stress is reported compression-positive, σ_n(q) = f(qd) p(q) (mean p0).
 //! |τ| is what is compared with the bond strength.
+//!
+//! Layer stacks (`stack`): the same solve with the stack's compliance and the fields at every
+//! interface ([`solve_stack`], [`stack_interface_fields`]).
 
 mod fft;
+mod stack;
+pub use stack::{solve_stack, stack_interface_fields};
 
 use crate::error::Error;
 use crate::layer::Stack;

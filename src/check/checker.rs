@@ -348,23 +348,12 @@ impl Checker {
                 self.rms_slope
             ));
         }
-        if thickness < self.h_rms {
-            w.push(format!(
-                "the film thickness d = {thickness:.4e} m is below the surface's h_rms = {:.4e} m: \
-                 the roughness is not a small perturbation of the film, and the theory's layer \
-                 of uniform thickness does not describe it",
-                self.h_rms
-            ));
-        }
-        let longest = 2.0 * std::f64::consts::PI / self.q_low;
-        if longest < thickness {
-            w.push(format!(
-                "the longest wavelength of the spectrum, 2π/q_low = {longest:.4e} m, is shorter \
-                 than the film thickness d = {thickness:.4e} m: the interface stress comes from \
-                 wavelengths of the order of d and longer, which the data do not hold (measure a \
-                 longer scan or a larger map)"
-            ));
-        }
+        w.extend(data_warnings(
+            "film thickness",
+            thickness,
+            self.h_rms,
+            self.q_low,
+        ));
         w
     }
 
@@ -379,4 +368,29 @@ impl Checker {
         self.engine.prepare(&self.design.layers, lo, hi);
         thicknesses.par_iter().map(|&d| self.evaluate(d)).collect()
     }
+}
+
+/// What the roughness data say about a coating of `thickness` (m), named `what` ("film
+/// thickness"): thinner than h_rms (the roughness is no small perturbation of the layer), or
+/// thicker than the longest measured wavelength 2π/q_low (the interface stress then comes from
+/// wavelengths the data do not hold).
+pub(crate) fn data_warnings(what: &str, thickness: f64, h_rms: f64, q_low: f64) -> Vec<String> {
+    let mut w = Vec::new();
+    if thickness < h_rms {
+        w.push(format!(
+            "the {what} d = {thickness:.4e} m is below the surface's h_rms = {h_rms:.4e} m: \
+             the roughness is not a small perturbation of the film, and the theory's layer \
+             of uniform thickness does not describe it"
+        ));
+    }
+    let longest = 2.0 * std::f64::consts::PI / q_low;
+    if longest < thickness {
+        w.push(format!(
+            "the longest wavelength of the spectrum, 2π/q_low = {longest:.4e} m, is shorter \
+             than the {what} d = {thickness:.4e} m: the interface stress comes from \
+             wavelengths of the order of d and longer, which the data do not hold (measure a \
+             longer scan or a larger map)"
+        ));
+    }
+    w
 }

@@ -14,7 +14,8 @@
 //! (stresses), 1 − d_min/d for the thickness; a check passes when its margin is ≥ 0. The rules
 //! shared with the exact check ([`crate::verify`]) are in [`criteria`]; the minimum-thickness
 //! search and the argument for it in [`min_thickness`], its root finder in [`itp`]; what alone
-//! would make a failing design pass in [`levers`].
+//! would make a failing design pass in [`levers`]; the same checks at every interface of a
+//! layer stack in [`stack`].
 //!
 //! ## Validity
 //! The outcome carries a warning, with the number that triggered it, where the theory is
@@ -31,6 +32,7 @@ pub mod criteria;
 pub mod itp;
 pub mod levers;
 pub mod min_thickness;
+pub mod stack;
 #[cfg(test)]
 mod tests;
 

@@ -54,6 +54,9 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
     if let Some(w) = scene.version_warning() {
         eprintln!("coatcheck: warning: {w}");
     }
+    if scene.is_stack() {
+        return super::check_stack::run(&args, &scene);
+    }
     let several = !scene.roughness.more_files.is_empty();
     let (text, code) = match sweep {
         Some(range) => (run_sweep(&args, &scene, range)?, 0),

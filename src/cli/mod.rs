@@ -3,12 +3,14 @@
 
 mod check;
 mod check_args;
+mod check_stack;
 mod materials;
 
 use clap::{Parser, Subcommand};
 
 mod psd;
 mod response;
+mod response_stack;
 mod synth;
 mod verify;
 
@@ -29,7 +31,8 @@ enum Command {
     Check(Box<check::CheckArgs>),
     /// List the materials library (bundled, plus --materials DIR).
     Materials(materials::MaterialsArgs),
-    /// Layer response S, f, g over q·d (eq. 7 and the static App. B kernels; Fig. 14).
+    /// Layer response S, f, g over q·d (eq. 7 and the static App. B kernels; Fig. 14), or over q
+    /// at every interface of a layer stack (`--layer`).
     Response(response::ResponseArgs),
     /// Heights (line scans or a height map) → power spectrum C(q), with a summary.
     Psd(psd::PsdArgs),

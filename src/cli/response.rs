@@ -1,5 +1,6 @@
 //! `coatcheck response`: S(qd), f(qd), g(qd) for a film on a substrate (the paper's Fig. 14 as
-//! numbers).
+//! numbers), or S(q) and f_k(q), g_k(q) at every interface of a layer stack (`--layer`, in
+//! [`super::response_stack`]).
 
 use clap::{Args, ValueEnum};
 use coatcheck::Error;
@@ -17,19 +18,26 @@ pub enum Format {
 #[derive(Args)]
 pub struct ResponseArgs {
     /// Film: Young's modulus and Poisson ratio, e.g. `1MPa,0.5`.
-    #[arg(long)]
-    film: String,
+    #[arg(long, required_unless_present = "layer", conflicts_with = "layer")]
+    film: Option<String>,
+    /// A layer of a stack, top first: Young's modulus, Poisson ratio and thickness, e.g.
+    /// `1MPa,0.5,10um` (repeat for each layer, 1 to 10).
+    #[arg(long, conflicts_with = "qd")]
+    pub(super) layer: Vec<String>,
     /// Substrate: Young's modulus and Poisson ratio, e.g. `200GPa,0.3`.
     #[arg(long)]
-    substrate: String,
+    pub(super) substrate: String,
     /// q·d values: a list `0.1,1,10` or a log-spaced range `from:to:n`.
-    #[arg(long)]
-    qd: String,
+    #[arg(long, required_unless_present_any = ["q", "layer"], conflicts_with = "q")]
+    qd: Option<String>,
+    /// Wavenumbers q (1/m) for a stack: a list `1e5,1e6` or a log-spaced range `from:to:n`.
+    #[arg(long, conflicts_with = "film")]
+    pub(super) q: Option<String>,
     #[arg(long, value_enum, default_value = "table")]
-    format: Format,
+    pub(super) format: Format,
 }
 
-fn elastic(flag: &'static str, text: &str) -> Result<Elastic, Error> {
+pub(super) fn elastic(flag: &'static str, text: &str) -> Result<Elastic, Error> {
     let parts: Vec<&str> = text.split(',').collect();
     if parts.len() != 2 {
         return Err(Error::invalid(flag, text, "E,nu (e.g. 1MPa,0.5)"));
@@ -51,15 +59,25 @@ const MAX_POINTS: usize = 1_000_000;
 /// Parse `a,b,c` or `from:to:n` (n log-spaced points, 2 <= n <= 1e6), each q·d within
 /// [0, 1e6].
 pub fn parse_grid(flag: &'static str, text: &str) -> Result<Vec<f64>, Error> {
+    parse_values(flag, text, QD_MAX, "a value from 0 to 1e6")
+}
+
+/// [`parse_grid`] with values within [0, max] (`range` says so in the error).
+pub(super) fn parse_values(
+    flag: &'static str,
+    text: &str,
+    max: f64,
+    range: &'static str,
+) -> Result<Vec<f64>, Error> {
     let num = |s: &str| -> Result<f64, Error> {
         let v: f64 = s
             .trim()
             .parse()
             .map_err(|_| Error::invalid(flag, s, "a number"))?;
-        if (0.0..=QD_MAX).contains(&v) {
+        if (0.0..=max).contains(&v) {
             Ok(v)
         } else {
-            Err(Error::invalid(flag, s, "a value from 0 to 1e6"))
+            Err(Error::invalid(flag, s, range))
         }
     };
     let parts: Vec<&str> = text.split(':').collect();
@@ -104,11 +122,14 @@ fn err(v: f64) -> f64 {
 }
 
 pub fn run(args: ResponseArgs) -> Result<i32, Error> {
+    let (Some(film), Some(qd)) = (&args.film, &args.qd) else {
+        return super::response_stack::run(&args);
+    };
     let pair = Bilayer::new(
-        elastic("--film", &args.film)?,
+        elastic("--film", film)?,
         elastic("--substrate", &args.substrate)?,
     );
-    let qd = parse_grid("--qd", &args.qd)?;
+    let qd = parse_grid("--qd", qd)?;
     let rows: Vec<(f64, coatcheck::layer::Response)> =
         qd.iter().map(|&x| (x, pair.response(x))).collect();
     let text = match args.format {

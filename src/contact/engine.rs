@@ -163,6 +163,23 @@ impl Engine {
             stack.thickness,
             self.spectrum.q_low(),
         );
+        let at = At {
+            depth: stack.thickness,
+            e_top: stack.layers.film.e_star(),
+            p0,
+            kernel_rtol: KERNEL_RTOL,
+        };
+        self.refine(&kernels, at, request)
+    }
+
+    /// The evaluation with `kernels`, on grids refined until the estimates meet rtol (at most
+    /// [`MAX_REFINE`] times).
+    pub(super) fn refine(
+        &self,
+        kernels: &Kernels,
+        at: At,
+        request: Request,
+    ) -> Result<Contact, Error> {
         let mut evaluations = 0;
         let mut interface = 0;
         let mut last = None;
@@ -176,9 +193,10 @@ impl Engine {
             let point = Point {
                 grid,
                 graded,
-                kernels: &kernels,
-                stack,
-                p0,
+                kernels,
+                depth: at.depth,
+                e_top: at.e_top,
+                p0: at.p0,
                 req: request,
                 rtol: self.settings.rtol,
             };
@@ -186,7 +204,7 @@ impl Engine {
             interface += c.interface_kernel_evaluations;
             c.interface_kernel_evaluations = interface;
             evaluations = c.kernel_evaluations;
-            add_rounding_floor(&mut c);
+            add_rounding_floor(&mut c, rounding_floor(at.kernel_rtol));
             let done = converged(&c, self.settings.rtol);
             last = Some(c);
             if done {
@@ -199,6 +217,16 @@ impl Engine {
         }
         Ok(c)
     }
+}
+
+/// Where one evaluation is made: the interface's depth (m), the top layer's E* (Pa), the
+/// nominal pressure p0 (Pa), and the kernels' relative error bound.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct At {
+    pub(super) depth: f64,
+    pub(super) e_top: f64,
+    pub(super) p0: f64,
+    pub(super) kernel_rtol: f64,
 }
 
 fn converged(c: &Contact, rtol: f64) -> bool {
@@ -230,11 +258,16 @@ fn within(e: &Estimate, rtol: f64, atol: f64) -> bool {
 /// ([`KERNEL_RTOL`], entering through S⁻² and f², g², i.e. twice, and once more through the
 /// σ–G relations) and the summation over some thousand nodes (64 ε). The quadrature estimate
 /// does not see these.
-pub const ROUNDING_FLOOR: f64 = 4.0 * KERNEL_RTOL + 64.0 * EPS;
+pub const ROUNDING_FLOOR: f64 = rounding_floor(KERNEL_RTOL);
 
-fn add_rounding_floor(c: &mut Contact) {
+/// [`ROUNDING_FLOOR`] for kernels with relative error bound `kernel_rtol`.
+pub const fn rounding_floor(kernel_rtol: f64) -> f64 {
+    4.0 * kernel_rtol + 64.0 * EPS
+}
+
+fn add_rounding_floor(c: &mut Contact, floor: f64) {
     for e in estimates_mut(c) {
-        e.err += ROUNDING_FLOOR * e.value.abs();
+        e.err += floor * e.value.abs();
     }
 }
 

@@ -28,7 +28,6 @@ use super::probability::{
 };
 use super::{Contact, ERR_SAFETY, Request, sized};
 use crate::error::Error;
-use crate::layer::Stack;
 use crate::prec::{EPS, Estimate, SMALLEST_SUBNORMAL, Termination};
 use crate::special::erf_and_gauss_many;
 use std::f64::consts::PI;
@@ -93,13 +92,15 @@ struct InterfaceScratch {
     rho_k_f2_dd: [Vec<f64>; 4],
 }
 
-/// What one evaluation is for: the grid, the kernels at one thickness, the pressure, the
-/// request and the tolerance.
+/// What one evaluation is for: the grid, the kernels at one thickness, the depth of the
+/// interface (the film thickness, or z_k in a stack: the interface tail's q·d is q times it),
+/// the top layer's E*, the pressure, the request and the tolerance.
 pub(super) struct Point<'a> {
     pub(super) grid: &'a Grid,
     pub(super) graded: Option<&'a Graded>,
     pub(super) kernels: &'a Kernels<'a>,
-    pub(super) stack: &'a Stack,
+    pub(super) depth: f64,
+    pub(super) e_top: f64,
     pub(super) p0: f64,
     pub(super) req: Request,
     pub(super) rtol: f64,
@@ -126,13 +127,12 @@ pub(super) fn evaluate_on(
 ) -> Result<Contact, Error> {
     let Point {
         grid,
-        stack,
+        depth: d,
+        e_top: e0,
         p0,
         req,
         ..
     } = *pt;
-    let d = stack.thickness;
-    let e0 = stack.layers.film.e_star();
     let cg = 0.25 * PI * e0 * e0;
     let (g_sum, g_err) = g_sum(grid, pt.kernels, d, &mut scratch.base)?;
     let rho_k = &scratch.base.rho_k;
@@ -236,12 +236,11 @@ fn interface(
 ) -> Interface {
     let Point {
         grid,
-        stack,
+        e_top: e0,
         p0,
         req,
         ..
     } = *pt;
-    let e0 = stack.layers.film.e_star();
     let cg = 0.25 * PI * e0 * e0;
     let rho_k = &base.rho_k;
     let span_raw: f64 = (0..2 * graded.base_from)
@@ -294,7 +293,7 @@ fn interface_kernels(
     let Point {
         grid, kernels, req, ..
     } = *pt;
-    let d = pt.stack.thickness;
+    let d = pt.depth;
     let tol = 1e-3 * pt.rtol;
     let n = grid.q.len();
     let rounding = 4.0 * EPS * n as f64 * g_sum;

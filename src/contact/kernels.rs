@@ -1,7 +1,8 @@
 //! The layer kernels S⁻², f², g² of one material pair at the quadrature nodes for one
 //! thickness (eqs. B8–B12 take them at q·d): from the pair's [`KernelTable`] (checked against
 //! the exact forms to [`crate::prec::TABLE_RTOL`]), or the exact forms where no table resolves
-//! them. The batch forms (`k_many`, `interface_many`) evaluate all nodes of a range at once.
+//! them; or a layer stack's S⁻² and one interface's f_k², g_k² (`layer::stack`), exact at every
+//! node. The batch forms (`k_many`, `interface_many`) evaluate all nodes of a range at once.
 //!
 //! Thick films: f and g fall like e^{−qd}, so f² and g² leave the f64 range from q·d ≈ 355
 //! while the interface stresses (∝ f(q_L d)) stay representable up to q_L d ≈ 745. Where
@@ -12,7 +13,10 @@
 //! where S = 1 and the table holds no f, g panels, and the integrals stop within a few q·d of
 //! q_L d, so the exact forms cost a few hundred evaluations.
 
+use crate::layer::stack::{MAX_LAYERS, Stack};
 use crate::layer::{Bilayer, KernelTable, Nodes, Squared};
+use std::cell::RefCell;
+use std::collections::HashMap;
 
 /// Above this q_L·d the interface kernels are scaled by e^{2 q_L d}: below it f², g² at q_L d
 /// exceed e^{−400}·(f e^{qd})² ≈ 1e-174·(f e^{qd})², and sums of them stay far inside the normal
@@ -30,6 +34,29 @@ enum Source<'a> {
         layers: &'a Bilayer,
         d: f64,
     },
+    /// A layer stack's S⁻² and, at its interface `k` (0 = below the top layer), f_k², g_k²,
+    /// exact at q ([`Stack::response_into`]), each q evaluated once for all interfaces
+    /// (`memo`).
+    Stack {
+        stack: &'a Stack,
+        k: usize,
+        memo: &'a StackMemo,
+    },
+}
+
+/// A stack's S and every (f_k, g_k) at the q already evaluated (by q's bits): the evaluations
+/// of the interfaces of one stack share their nodes.
+pub(super) type StackMemo = RefCell<HashMap<u64, (f64, [(f64, f64); MAX_LAYERS])>>;
+
+/// S and (f_k, g_k) of a stack at q.
+fn stack_at(stack: &Stack, memo: &StackMemo, k: usize, q: f64) -> (f64, f64, f64) {
+    let mut memo = memo.borrow_mut();
+    let (s, out) = memo.entry(q.to_bits()).or_insert_with(|| {
+        let mut out = [(0.0, 0.0); MAX_LAYERS];
+        let s = stack.response_into(q, &mut out[..stack.layers().len()]);
+        (s, out)
+    });
+    (*s, out[k].0, out[k].1)
 }
 
 /// The layer kernels at nodes q (with u = ln q) for one thickness: tabulated, or exact when no
@@ -61,6 +88,15 @@ impl<'a> Kernels<'a> {
         Self { source, shift }
     }
 
+    /// The kernels of `stack` at its interface `k` (unscaled: the stack's interface integrals
+    /// stop at q·z_k = 20, `contact::stack`).
+    pub(super) fn stack(stack: &'a Stack, k: usize, memo: &'a StackMemo) -> Self {
+        Self {
+            source: Source::Stack { stack, k, memo },
+            shift: 0.0,
+        }
+    }
+
     /// s: the f², g² returned are f² e^{2s}, g² e^{2s} (0 unless q_L d > [`X_SHIFT`]).
     pub(super) fn shift(&self) -> f64 {
         self.shift
@@ -71,6 +107,7 @@ impl<'a> Kernels<'a> {
         match self.source {
             Source::Table { table, d, ln_d } => table.k(q * d, u + ln_d),
             Source::Exact { layers, d } => layers.s(q * d).powi(-2),
+            Source::Stack { stack, k, memo } => stack_at(stack, memo, k, q).0.powi(-2),
         }
     }
 
@@ -79,6 +116,11 @@ impl<'a> Kernels<'a> {
         let (layers, d) = match self.source {
             Source::Table { table, d, .. } => (table.layers(), d),
             Source::Exact { layers, d } => (layers, d),
+            Source::Stack { stack, k, memo } => {
+                let (_, f, g) = stack_at(stack, memo, k, q);
+                let e = self.shift.exp();
+                return ((f * e).powi(2), (g * e).powi(2));
+            }
         };
         let x = q * d;
         let (f, g) = layers.interface_undecayed(x);
@@ -98,6 +140,10 @@ impl<'a> Kernels<'a> {
                 let r = layers.response(q * d);
                 (r.f * r.f, r.g * r.g)
             }
+            Source::Stack { stack, k, memo } => {
+                let (_, f, g) = stack_at(stack, memo, k, q);
+                (f * f, g * g)
+            }
         }
     }
 
@@ -105,7 +151,7 @@ impl<'a> Kernels<'a> {
     pub(super) fn k_many(&self, q: &[f64], u: &[f64], out: &mut [f64]) {
         match self.source {
             Source::Table { table, d, ln_d } => table.k_many(Nodes { q, u, d, ln_d }, out),
-            Source::Exact { .. } => {
+            Source::Exact { .. } | Source::Stack { .. } => {
                 for ((o, &q), &u) in out.iter_mut().zip(q).zip(u) {
                     *o = self.k(q, u);
                 }
@@ -146,6 +192,14 @@ impl<'a> Kernels<'a> {
                     k: r.s.powi(-2),
                     f2: r.f * r.f,
                     g2: r.g * r.g,
+                }
+            }
+            Source::Stack { stack, k, memo } => {
+                let (s, f, g) = stack_at(stack, memo, k, q);
+                Squared {
+                    k: s.powi(-2),
+                    f2: f * f,
+                    g2: g * g,
                 }
             }
         }

@@ -158,7 +158,7 @@ fn enabled_names(scene: &Scene) -> Vec<&'static str> {
 }
 
 /// Value and limit of a check in human units.
-fn check_cells(c: &CheckResult) -> (String, String) {
+pub(crate) fn check_cells(c: &CheckResult) -> (String, String) {
     let f = |x: f64| match c.kind {
         CheckKind::MinThickness => format!("{} µm", um(x)),
         _ => format!("{} MPa", mpa(x)),

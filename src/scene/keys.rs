@@ -529,6 +529,13 @@ key_table! {
         alt: None,
         help: "Checks to run, comma-separated (default: bond-shear,substrate-yield,min-thickness)",
     },
+    ThicknessOf => Spec {
+        name: "criteria.thickness_of",
+        flag: "--thickness-of",
+        value: Value::Text,
+        alt: None,
+        help: "The layer of a stack whose minimum thickness is sought, by name (default the top layer)",
+    },
     Rtol => Spec {
         name: "numerics.rtol",
         flag: "--rtol",
@@ -612,6 +619,21 @@ pub struct RawScene {
     pub schema_version: Option<Field>,
     pub coatcheck_version: Option<Field>,
     values: Vec<Option<Field>>,
+    /// The `[[layer]]` tables of a layer stack, top first (empty for a `[film]` scene).
+    pub layers: Vec<RawLayer>,
+}
+
+/// One `[[layer]]` table as written: a material by name or its moduli, a thickness, an
+/// optional name, and the bond to what lies below (a bond by name or a shear strength).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLayer {
+    pub name: Option<Field>,
+    pub material: Option<Field>,
+    pub youngs_modulus: Option<Field>,
+    pub poisson_ratio: Option<Field>,
+    pub thickness: Option<Field>,
+    pub bond: Option<Field>,
 }
 
 impl Default for RawScene {
@@ -620,6 +642,7 @@ impl Default for RawScene {
             schema_version: None,
             coatcheck_version: None,
             values: vec![None; KEYS.len()],
+            layers: Vec::new(),
         }
     }
 }
@@ -667,6 +690,8 @@ struct Section {
 /// The top-level keys besides the sections.
 const SCHEMA_VERSION: &str = "schema_version";
 const COATCHECK_VERSION: &str = "coatcheck_version";
+/// The array of tables of a layer stack, `[[layer]]`.
+const LAYER: &str = "layer";
 
 fn names() -> &'static Names {
     static NAMES: OnceLock<Names> = OnceLock::new();
@@ -690,6 +715,7 @@ fn names() -> &'static Names {
         }
         let mut top = vec![SCHEMA_VERSION, COATCHECK_VERSION];
         top.extend(sections.iter().map(|s| s.name));
+        top.push(LAYER);
         Names { top, sections }
     })
 }
@@ -743,6 +769,7 @@ impl<'de> Visitor<'de> for SceneVisitor {
             match names.top[i] {
                 SCHEMA_VERSION => raw.schema_version = Some(map.next_value()?),
                 COATCHECK_VERSION => raw.coatcheck_version = Some(map.next_value()?),
+                LAYER => raw.layers = map.next_value()?,
                 _ => map.next_value_seed(SectionSeed {
                     section: &names.sections[i - 2],
                     raw: &mut raw,

@@ -43,20 +43,24 @@
 //! - `keys`: the table of keys ([`KEYS`]: name, flag, value kind, range, alternatives, help)
 //!   and the scene as written ([`RawScene`]).
 //! - `resolve`: the validation into a [`Scene`] ([`resolve()`]).
+//! - `layers`: the `[[layer]]` tables of a layer stack ([`SceneLayer`]).
 //! - `roughness`: the roughness ([`Roughness`]), its spectrum, and the validation of its keys.
 //! - `profile`: how heights become a spectrum ([`ProfileFormat`]: `coatcheck psd`'s options
 //!   as `roughness.*` keys).
 
 mod keys;
+mod layers;
 mod profile;
 mod resolve;
 mod roughness;
 
-pub use keys::{Bound, Choice, KEYS, Key, Q_RANGE, Range, RawScene, Spec, Value};
+pub use keys::{Bound, Choice, KEYS, Key, Q_RANGE, Range, RawLayer, RawScene, Spec, Value};
+pub use layers::SceneLayer;
 pub use profile::ProfileFormat;
 pub use resolve::resolve;
 pub use roughness::{PsdFormat, Roughness, RoughnessSource, Scale};
 
+use crate::check::stack::{StackDesign, StackLayer};
 use crate::check::{Criteria, Design};
 use crate::error::Error;
 use crate::layer::Bilayer;
@@ -79,6 +83,14 @@ pub struct Scene {
     pub thickness: Option<f64>,
     pub substrate: Material,
     pub bond: Bond,
+    /// The layers of a stack of two or more, top first (`[[layer]]`); empty for a film scene
+    /// (one `[[layer]]` is the film). With layers, `film` and `thickness` are the top layer's
+    /// and `bond` the bottom layer's.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub layers: Vec<SceneLayer>,
+    /// The layer whose minimum thickness is sought (`criteria.thickness_of`; 0 = the top).
+    #[serde(skip)]
+    pub thickness_of: usize,
     /// Nominal pressure p0 (Pa).
     pub pressure: f64,
     pub criteria: Criteria,
@@ -126,6 +138,11 @@ impl Scene {
             .collect()
     }
 
+    /// Whether the scene is a stack of two or more layers ([`Scene::layers`]).
+    pub fn is_stack(&self) -> bool {
+        !self.layers.is_empty()
+    }
+
     /// The design (without thickness) for [`crate::check::Checker`].
     pub fn design(&self) -> Design {
         Design {
@@ -134,6 +151,37 @@ impl Scene {
             yield_strength: self.substrate.yield_strength,
             bond_strength: self.bond.shear_strength,
             criteria: self.criteria,
+        }
+    }
+
+    /// The stack design (layers top first, their bonds, `criteria.thickness_of`) for
+    /// [`crate::check::stack::StackChecker`]; a film scene is a stack of one layer.
+    pub fn stack_design(&self) -> StackDesign {
+        let layers = if self.layers.is_empty() {
+            vec![StackLayer {
+                name: self.film.name.clone(),
+                material: self.film.elastic,
+                thickness: self.thickness.unwrap_or(f64::NAN),
+                bond_strength: self.bond.shear_strength,
+            }]
+        } else {
+            self.layers
+                .iter()
+                .map(|l| StackLayer {
+                    name: l.name.clone(),
+                    material: l.material.elastic,
+                    thickness: l.thickness,
+                    bond_strength: l.bond.shear_strength,
+                })
+                .collect()
+        };
+        StackDesign {
+            layers,
+            substrate: self.substrate.elastic,
+            pressure: self.pressure,
+            yield_strength: self.substrate.yield_strength,
+            criteria: self.criteria,
+            thickness_of: self.thickness_of,
         }
     }
 

@@ -3,6 +3,7 @@
 //! library, criteria and numerics. Errors name the key and its line (or flag).
 
 use super::keys::{Choice, Key, RawScene};
+use super::layers::{resolve_layers, thickness_of};
 use super::roughness::resolve_roughness;
 use super::{Override, Scene};
 use crate::check::{CheckKind, Checks, Criteria};
@@ -65,10 +66,29 @@ pub fn resolve(
     check_contradictions(r)?;
     let roughness = resolve_roughness(r)?;
     let mut overrides = Vec::new();
-    let film = resolve_material(r, library, Role::FILM, &mut overrides)?;
-    let thickness = r.quantity(Key::Thickness)?;
+    let mut layers = resolve_layers(&raw.layers, ctx, library)?;
+    let thickness_of = thickness_of(&layers, r.field(Key::ThicknessOf), ctx)?;
+    let (film, thickness, bond) = match layers.first() {
+        None => (
+            resolve_material(r, library, Role::FILM, &mut overrides)?,
+            r.quantity(Key::Thickness)?,
+            resolve_bond(r, library, &mut overrides)?,
+        ),
+        Some(top) => {
+            check_no_film_keys(r)?;
+            let bottom = layers.last().expect("a first layer");
+            (
+                top.material.clone(),
+                Some(top.thickness),
+                bottom.bond.clone(),
+            )
+        }
+    };
+    // One layer is the [film] scene itself.
+    if layers.len() == 1 {
+        layers.clear();
+    }
     let substrate = resolve_material(r, library, Role::SUBSTRATE, &mut overrides)?;
-    let bond = resolve_bond(r, library, &mut overrides)?;
     let pressure = r.quantity(Key::Pressure)?.ok_or_else(|| {
         ctx.missing(
             Key::Pressure.name(),
@@ -98,11 +118,35 @@ pub fn resolve(
         thickness,
         substrate,
         bond,
+        layers,
+        thickness_of,
         pressure,
         criteria,
         settings,
         overrides,
     })
+}
+
+/// A stack's layers are its film and bonds: `[film]` and `[bond]` keys (or their flags) beside
+/// `[[layer]]` tables are a contradiction.
+fn check_no_film_keys(r: Reader<'_>) -> Result<(), Error> {
+    let film_keys = [
+        Key::FilmMaterial,
+        Key::FilmYoungsModulus,
+        Key::FilmPoissonRatio,
+        Key::Thickness,
+        Key::BondMaterial,
+        Key::ShearStrength,
+    ];
+    match film_keys.iter().find_map(|&k| r.field(k).map(|f| (k, f))) {
+        Some((k, f)) => Err(r.error(
+            k,
+            f,
+            "contradicts the [[layer]] tables (a stack gives each layer's material, thickness \
+             and bond in its [[layer]] table)",
+        )),
+        None => Ok(()),
+    }
 }
 
 fn check_schema_version(raw: &RawScene, ctx: Ctx<'_>) -> Result<(), Error> {

@@ -124,3 +124,106 @@ fn bad_input_exits_2_with_a_message() {
         );
     }
 }
+
+/// `--layer`: two layers of one material on a half-space of it (a homogeneous solid) give the
+/// closed forms of notes.md, S = 1, f_k = (1 + q z_k)e^{−q z_k}, g_k = q z_k e^{−q z_k}, in the
+/// columns q, S, f1, g1, f2, g2 (each followed by its error, STACK_RTOL of the value); and one
+/// layer equals the `--film` form at q·d = q d (within the two kernels' error bounds).
+#[test]
+fn stack_columns_and_limits() {
+    let (code, out, _) = run(&[
+        "response",
+        "--layer",
+        "3GPa,0.35,10um",
+        "--layer",
+        "3GPa,0.35,20um",
+        "--substrate",
+        "3GPa,0.35",
+        "--q",
+        "1e3,1e5,3e5",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(code, 0);
+    let mut lines = out.lines();
+    assert_eq!(
+        lines.next(),
+        Some("q,S,S_err,f1,f1_err,g1,g1_err,f2,f2_err,g2,g2_err")
+    );
+    let rtol = coatcheck::layer::stack::STACK_RTOL;
+    for line in lines {
+        let row: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
+        let q = row[0];
+        let mut want = vec![1.0];
+        for z in [10e-6, 30e-6] {
+            let x: f64 = q * z;
+            want.extend([(1.0 + x) * (-x).exp(), x * (-x).exp()]);
+        }
+        for (k, w) in want.iter().enumerate() {
+            let (v, e) = (row[1 + 2 * k], row[2 + 2 * k]);
+            assert!(
+                (v - w).abs() <= rtol * w,
+                "column {k} at q = {q}: {v} vs {w}"
+            );
+            assert_eq!(e, rtol * v.abs());
+        }
+    }
+    let col = |args: &[&str]| -> Vec<f64> {
+        let (code, out, _) = run(args);
+        assert_eq!(code, 0);
+        let row = out.lines().nth(1).expect("one row").to_string();
+        row.split(',').map(|v| v.parse().unwrap()).collect()
+    };
+    let one = col(&[
+        "response",
+        "--layer",
+        "1MPa,0.5,10um",
+        "--substrate",
+        "200GPa,0.3",
+        "--q",
+        "1e5",
+        "--format",
+        "csv",
+    ]);
+    let film = col(&[
+        "response",
+        "--film",
+        "1MPa,0.5",
+        "--substrate",
+        "200GPa,0.3",
+        "--qd",
+        "1",
+        "--format",
+        "csv",
+    ]);
+    for k in [1, 3, 5] {
+        assert!(
+            (one[k] - film[k]).abs() <= 2.0 * rtol * film[k],
+            "column {k}: {} vs {}",
+            one[k],
+            film[k]
+        );
+    }
+}
+
+/// Bad stacks: a layer without thickness, 11 layers, `--layer` with `--qd`, no `--q`: exit 2
+/// with a message naming the flag.
+#[test]
+fn stack_bad_input() {
+    let eleven: Vec<&str> = std::iter::repeat_n(["--layer", "1MPa,0.5,1um"], 11)
+        .flatten()
+        .collect();
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["--layer", "1MPa,0.5", "--q", "1"], "--layer"),
+        ([eleven.as_slice(), &["--q", "1"]].concat(), "layers"),
+        (vec!["--layer", "1MPa,0.5,1um", "--qd", "1"], "--qd"),
+        (vec!["--layer", "1MPa,0.5,1um"], "--q"),
+        (vec!["--layer", "1MPa,0.5,1um", "--q=-1"], "--q"),
+    ];
+    for (args, names) in cases {
+        let all = [&["response", "--substrate", "200GPa,0.3"], args.as_slice()].concat();
+        let (code, _, err) = run(&all);
+        assert_eq!(code, 2, "{all:?}");
+        assert!(err.contains(names), "{all:?}: {err}");
+    }
+}

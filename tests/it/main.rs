@@ -34,6 +34,7 @@ mod psd_read;
 mod report_browser;
 mod schema;
 mod stack;
+mod stack_scene;
 mod tail;
 mod tangential;
 mod topography;

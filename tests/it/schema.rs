@@ -135,7 +135,7 @@ fn the_validator_accepts_and_rejects_what_it_should() {
 }
 
 /// `check --format json` of every kind of scene (model, measured PSD, failing, several
-/// roughness files, `--verify`, flags only, one check) against the shipped schema.
+/// roughness files, `--verify`, flags only, one check, layer stacks) against the shipped schema.
 #[test]
 fn check_json_follows_its_schema() {
     let schema: Value = serde_json::from_str(coatcheck::report::CHECK_SCHEMA).unwrap();
@@ -152,6 +152,8 @@ fn check_json_follows_its_schema() {
             "bond-shear",
         ],
         &["check", "examples/specs/paper-film-too-thin.toml"],
+        &["check", "examples/rubber-epoxy-primer-steel.toml"],
+        &["check", "examples/ptfe-rubber-steel.toml"],
     ] {
         let mut argv = args.to_vec();
         argv.extend(["--format", "json"]);

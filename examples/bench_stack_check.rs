@@ -1,0 +1,67 @@
+//! Benchmark: a two-layer check with d_min (rubber 10 µm on an epoxy primer 10 µm on steel,
+//! examples/rubber-epoxy-primer-steel.toml: bond-shear at both interfaces, substrate-yield,
+//! min-thickness of the rubber) against the one-layer check of the same rubber on the same
+//! steel (the paper's roughness, p0 = 0.1 MPa). Medians of full checks (engine set-up,
+//! evaluation, checks, d_min search), run alternately, and the median of their ratios.
+//!
+//! Run: `cargo run --release --example bench_stack_check`
+
+use coatcheck::check::stack::StackChecker;
+use coatcheck::check::{Checker, Design};
+use coatcheck::layer::Bilayer;
+use coatcheck::material::Library;
+use coatcheck::scene::Scene;
+use std::path::PathBuf;
+use std::time::Instant;
+
+fn main() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let lib = Library::builtin().expect("bundled library");
+    let path = root.join("examples/rubber-epoxy-primer-steel.toml");
+    let scene = Scene::load(Some(&path), &[], &lib).expect("example scene");
+    let (spectrum, _) = scene.roughness.spectrum().expect("model spectrum");
+    let stack = scene.stack_design();
+    let rubber = &stack.layers[0];
+    let one = Design {
+        layers: Bilayer::new(rubber.material, stack.substrate),
+        pressure: stack.pressure,
+        yield_strength: stack.yield_strength,
+        bond_strength: rubber.bond_strength,
+        criteria: stack.criteria,
+    };
+    // The two checks alternate, so that both see the same load on a shared machine; the ratio
+    // is the median of the per-pair ratios.
+    let reps = 41;
+    let (mut one_evals, mut two_evals) = (0, 0);
+    let mut times: Vec<(f64, f64)> = Vec::with_capacity(reps);
+    for i in 0..reps + 4 {
+        let t = Instant::now();
+        let c = Checker::new(&spectrum, one.clone(), scene.settings).expect("valid design");
+        let out = c.run(rubber.thickness).expect("check runs");
+        one_evals = out.min_thickness.expect("d_min asked for").evaluations;
+        let one_us = t.elapsed().as_secs_f64() * 1e6;
+        let t = Instant::now();
+        let c = StackChecker::new(&spectrum, stack.clone(), scene.settings).expect("valid stack");
+        let out = c.run().expect("check runs");
+        two_evals = out.min_thickness.expect("d_min asked for").evaluations;
+        let two_us = t.elapsed().as_secs_f64() * 1e6;
+        // The first runs warm up.
+        if i >= 4 {
+            times.push((one_us, two_us));
+        }
+    }
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let one_us = median(times.iter().map(|t| t.0).collect());
+    let two_us = median(times.iter().map(|t| t.1).collect());
+    let ratio = median(times.iter().map(|t| t.1 / t.0).collect());
+    println!(
+        "one-layer check + d_min (rubber on steel):          {one_us:10.0} µs ({one_evals} d_min evaluations)"
+    );
+    println!(
+        "two-layer check + d_min (rubber on epoxy on steel): {two_us:10.0} µs ({two_evals} d_min evaluations)"
+    );
+    println!("ratio two-layer / one-layer (median of {reps} alternating pairs): {ratio:.2}");
+}

@@ -1,0 +1,253 @@
+//! The report of a layer-stack check ([`crate::check::stack`]): JSON and a human table.
+//!
+//! JSON: the top-level keys of a film's report (`check.schema.json`) for the top surface and
+//! the contact (`area_fraction`, `sigma_rms_top_pa`, `mean_contact_pressure_pa`, …), with
+//! `thickness_m` the thickness of the layer `criteria.thickness_of` names and the film's
+//! interface keys (`sigma_rms_interface_pa`, `tau_rms_interface_pa`, `tau_peak_pa`,
+//! `sigma_peak_interface_pa`) those of the bottom interface (on the substrate); then
+//! `interfaces`, top first: `name` (the layer above it), `depth_m`, `sigma_rms_pa`,
+//! `tau_rms_pa`, `tau_peak_pa`, `sigma_peak_pa` (each with `_err`), `bond_strength_pa`,
+//! `bond_exceedance`; each check names where it applies (`at`: a layer, or `substrate`); the
+//! scene echo lists the layers (`scene.layers`) and `thickness_of`.
+
+use super::check::check_cells;
+use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
+use crate::check::CheckKind;
+use crate::check::stack::{StackCheck, StackOutcome};
+use crate::prec::Estimate;
+use crate::scene::Scene;
+use serde_json::{Map, Value, json};
+
+fn put(m: &mut Map<String, Value>, key: &str, e: Option<Estimate>) {
+    m.insert(key.into(), json!(e.map(|e| e.value)));
+    m.insert(format!("{key}_err"), json!(e.map(|e| e.err)));
+}
+
+/// The JSON object (module docs).
+pub fn json(scene: &Scene, o: &StackOutcome) -> Value {
+    let c = &o.contact.top;
+    let bottom = o.interfaces.last().expect("a stack has an interface");
+    let design = scene.stack_design();
+    let mut m = Map::new();
+    m.insert("schema_version".into(), json!(super::SCHEMA_VERSION));
+    m.insert("coatcheck_version".into(), json!(env!("CARGO_PKG_VERSION")));
+    m.insert(
+        "verdict".into(),
+        json!(if o.pass { "pass" } else { "fail" }),
+    );
+    m.insert(
+        "thickness_m".into(),
+        json!(design.layers[design.thickness_of].thickness),
+    );
+    m.insert("pressure_pa".into(), json!(scene.pressure));
+    put(&mut m, "area_fraction", Some(c.area_fraction));
+    put(
+        &mut m,
+        "mean_contact_pressure_pa",
+        Some(o.mean_contact_pressure),
+    );
+    put(&mut m, "sigma_rms_top_pa", c.sigma_rms_top);
+    put(&mut m, "sigma_rms_interface_pa", Some(bottom.sigma_rms));
+    put(&mut m, "tau_rms_interface_pa", Some(bottom.tau_rms));
+    put(&mut m, "tau_peak_pa", Some(bottom.tau_peak));
+    put(&mut m, "sigma_peak_interface_pa", Some(bottom.sigma_peak));
+    put(&mut m, "e_eff_over_e_film", c.e_eff_over_e_film);
+    let (dmin, dmin_gov) = match &o.min_thickness {
+        Some(mt) => (mt.thickness, mt.governing),
+        None => (None, None),
+    };
+    put(&mut m, "min_thickness_m", dmin);
+    m.insert(
+        "min_thickness_governing_check".into(),
+        json!(dmin_gov.map(CheckKind::name)),
+    );
+    m.insert(
+        "governing_check".into(),
+        json!(governing(o).map(|c| c.result.kind.name())),
+    );
+    let interfaces: Vec<Value> = o
+        .interfaces
+        .iter()
+        .map(|i| {
+            let mut v = Map::new();
+            v.insert("name".into(), json!(i.name));
+            v.insert("depth_m".into(), json!(i.depth));
+            put(&mut v, "sigma_rms_pa", Some(i.sigma_rms));
+            put(&mut v, "tau_rms_pa", Some(i.tau_rms));
+            put(&mut v, "tau_peak_pa", Some(i.tau_peak));
+            put(&mut v, "sigma_peak_pa", Some(i.sigma_peak));
+            v.insert("bond_strength_pa".into(), json!(i.bond_strength));
+            v.insert("bond_exceedance".into(), json!(i.bond_exceedance));
+            Value::Object(v)
+        })
+        .collect();
+    m.insert("interfaces".into(), Value::Array(interfaces));
+    let checks: Vec<Value> = o
+        .checks
+        .iter()
+        .map(|c| {
+            let ch = &c.result;
+            json!({
+                "name": ch.kind.name(),
+                "at": c.at,
+                "value": ch.value.value,
+                "value_err": ch.value.err,
+                "unit": if ch.kind == CheckKind::MinThickness { "m" } else { "Pa" },
+                "limit": ch.limit,
+                "utilisation": ch.margin.map(|m| 1.0 - m),
+                "margin": ch.margin,
+                "pass": ch.pass,
+            })
+        })
+        .collect();
+    m.insert("checks".into(), Value::Array(checks));
+    m.insert("low_octave_share".into(), json!(c.low_octave_share));
+    m.insert("h_rms_m".into(), json!(o.h_rms));
+    m.insert("rms_slope".into(), json!(o.rms_slope));
+    // What alone would make a failing stack pass is not searched for stacks (a warning says so).
+    m.insert("levers".into(), json!([]));
+    m.insert("warnings".into(), json!(o.warnings));
+    m.insert(
+        "scene".into(),
+        json!({
+            "roughness": scene.roughness,
+            "film": scene.film,
+            "substrate": scene.substrate,
+            "bond": scene.bond,
+            "overrides": scene.overrides,
+            "layers": scene.layers,
+            "thickness_of": design.layers[design.thickness_of].name,
+            "criteria": scene.criteria,
+            "rtol": scene.settings.rtol,
+        }),
+    );
+    Value::Object(m)
+}
+
+/// An estimate in MPa with its error ("0.2216 ± 2.4e-11").
+fn pm_mpa(e: &Estimate) -> String {
+    format!("{} ± {}", mpa(e.value), sig(e.err * 1e-6, 2))
+}
+
+/// The human report: the layers, the contact, every interface, the checks, the verdict; in the
+/// units of every table (MPa, µm) and at most [`super::WIDTH`] columns.
+pub fn human(scene: &Scene, o: &StackOutcome) -> String {
+    let c = &o.contact.top;
+    let mut out = String::new();
+    let mut layers = table(&["layer", "E", "ν", "thickness", "bond to below"]);
+    for l in &scene.stack_design().layers {
+        layers.add_row([
+            l.name.clone(),
+            modulus(l.material.youngs),
+            format!("{}", l.material.poisson),
+            format!("{} µm", um(l.thickness)),
+            format!("{} MPa", mpa(l.bond_strength)),
+        ]);
+    }
+    out += &format!("{layers}\n");
+    out += &wrap(&format!(
+        "substrate: {} (E = {}, ν = {}), p0 = {} MPa",
+        scene.substrate.name,
+        modulus(scene.substrate.elastic.youngs),
+        scene.substrate.elastic.poisson,
+        mpa(scene.pressure)
+    ));
+    out.push('\n');
+    let mut t = table(&["result", "value", "error estimate"]);
+    let est = |e: &Estimate, unit: &str, scale: f64| {
+        [
+            format!("{}{unit}", sig(e.value * scale, 4)),
+            format!("{}{unit}", sig(e.err * scale, 3)),
+        ]
+    };
+    let [v, e] = est(&c.area_fraction, "", 1.0);
+    t.add_row(["A/A0 (real contact area fraction)".into(), v, e]);
+    let [v, e] = est(&o.mean_contact_pressure, " MPa", 1e-6);
+    t.add_row(["mean pressure in real contact p0·A0/A".into(), v, e]);
+    if let Some(s) = &c.sigma_rms_top {
+        let [v, e] = est(s, " MPa", 1e-6);
+        t.add_row(["sigma_rms top surface".into(), v, e]);
+    }
+    t.add_row([
+        "h_rms of the spectrum used".into(),
+        format!("{} µm", um(o.h_rms)),
+        String::new(),
+    ]);
+    t.add_row([
+        "rms slope of the spectrum used".into(),
+        sig(o.rms_slope, 4),
+        String::new(),
+    ]);
+    out += &format!("{t}\n");
+    let mut t = table(&[
+        "interface below",
+        "depth",
+        "σ_rms [MPa]",
+        "τ_rms [MPa]",
+        "τ_peak [MPa]",
+        "σ_peak [MPa]",
+        "P(|τ| > bond)",
+    ]);
+    for i in &o.interfaces {
+        t.add_row([
+            i.name.clone(),
+            format!("{} µm", um(i.depth)),
+            pm_mpa(&i.sigma_rms),
+            pm_mpa(&i.tau_rms),
+            pm_mpa(&i.tau_peak),
+            pm_mpa(&i.sigma_peak),
+            format!("{:.2e}", i.bond_exceedance),
+        ]);
+    }
+    out += &format!("{t}\n");
+    let mut k = table(&[
+        "check",
+        "at",
+        "value",
+        "limit",
+        "utilisation",
+        "margin",
+        "result",
+    ]);
+    for c in &o.checks {
+        let ch = &c.result;
+        let (v, l) = check_cells(ch);
+        k.add_row([
+            ch.kind.name().to_string(),
+            c.at.clone(),
+            v,
+            l,
+            utilisation_cell(ch.margin),
+            margin_cell(ch.margin),
+            if ch.pass { "PASS" } else { "FAIL" }.into(),
+        ]);
+    }
+    out += &format!("{k}\n");
+    for w in &o.warnings {
+        out += &wrap(&format!("warning: {w}"));
+        out.push('\n');
+    }
+    let governing = governing(o);
+    out += &format!(
+        "verdict: {}{}\n",
+        if o.pass { "PASS" } else { "FAIL" },
+        governing
+            .map(|c| format!(
+                " (governing check: {} at {}, utilisation {})",
+                c.result.kind.name(),
+                c.at,
+                utilisation_cell(c.result.margin)
+            ))
+            .unwrap_or_default()
+    );
+    out
+}
+
+/// The check with the least margin (a check with no margin, nothing passing, counts least).
+fn governing(o: &StackOutcome) -> Option<&StackCheck> {
+    o.checks.iter().min_by(|a, b| {
+        let ma = a.result.margin.unwrap_or(f64::NEG_INFINITY);
+        let mb = b.result.margin.unwrap_or(f64::NEG_INFINITY);
+        ma.total_cmp(&mb)
+    })
+}
