@@ -1,9 +1,10 @@
 //! `coatcheck response`: S(qd), f(qd), g(qd) for a film on a substrate (the paper's Fig. 14 as
-//! numbers).
+//! numbers), and beside them the tangential-load kernels g_t, f_t, h ([`coatcheck::layer::tangential`]).
 
 use clap::{Args, ValueEnum};
 use coatcheck::Error;
-use coatcheck::layer::{Bilayer, Elastic};
+use coatcheck::layer::tangential::{TANGENTIAL_RTOL, TangentialResponse};
+use coatcheck::layer::{Bilayer, Elastic, Response};
 use coatcheck::prec::KERNEL_RTOL;
 use coatcheck::units::{Dim, parse_quantity};
 use comfy_table::{Table, presets::UTF8_FULL};
@@ -97,43 +98,69 @@ fn err(v: f64) -> f64 {
     KERNEL_RTOL * v.abs()
 }
 
+/// The error estimates of g_t, f_t, h (absolute): relative [`TANGENTIAL_RTOL`], for g_t
+/// absolute in units of e^{−qd}/100 where it is smaller than that (near its zero).
+fn tangential_err(x: f64, t: &TangentialResponse) -> [f64; 3] {
+    let floor = 0.01 * (-x).exp();
+    [
+        TANGENTIAL_RTOL * t.g_t.abs().max(floor),
+        TANGENTIAL_RTOL * t.f_t.abs(),
+        TANGENTIAL_RTOL * t.h.abs(),
+    ]
+}
+
 pub fn run(args: ResponseArgs) -> Result<i32, Error> {
     let pair = Bilayer::new(
         elastic("--film", &args.film)?,
         elastic("--substrate", &args.substrate)?,
     );
     let qd = parse_grid("--qd", &args.qd)?;
-    let rows: Vec<(f64, coatcheck::layer::Response)> =
-        qd.iter().map(|&x| (x, pair.response(x))).collect();
+    let rows: Vec<(f64, Response, TangentialResponse)> = qd
+        .iter()
+        .map(|&x| (x, pair.response(x), pair.tangential(x)))
+        .collect();
     let text = match args.format {
         Format::Table => {
             let mut t = Table::new();
-            t.load_preset(UTF8_FULL).set_header(["q·d", "S", "f", "g"]);
-            for (x, r) in &rows {
+            t.load_preset(UTF8_FULL)
+                .set_header(["q·d", "S", "f", "g", "g_t", "f_t", "h"]);
+            for (x, r, tg) in &rows {
                 t.add_row([
                     format!("{x:.4e}"),
                     format!("{:.10e}", r.s),
                     format!("{:.10e}", r.f),
                     format!("{:.10e}", r.g),
+                    format!("{:.10e}", tg.g_t),
+                    format!("{:.10e}", tg.f_t),
+                    format!("{:.10e}", tg.h),
                 ]);
             }
             format!(
                 "{t}\nerror estimate: relative {KERNEL_RTOL:e} for each of S, f, g (the bound \
                  verified against a 100-digit solution over qd 1e-8..1e4, E0/E1 1e-8..1e8, nu \
-                 0..0.5)\n"
+                 0..0.5); relative {TANGENTIAL_RTOL:e} for g_t, f_t, h (for g_t near its zero \
+                 absolute, {TANGENTIAL_RTOL:e} e^-qd/100)\n"
             )
         }
         Format::Csv => {
-            let mut text = String::from("qd,S,S_err,f,f_err,g,g_err\n");
-            for (x, r) in &rows {
+            let mut text =
+                String::from("qd,S,S_err,f,f_err,g,g_err,g_t,g_t_err,f_t,f_t_err,h,h_err\n");
+            for (x, r, tg) in &rows {
+                let [gt_err, ft_err, h_err] = tangential_err(*x, tg);
                 text += &format!(
-                    "{x:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
+                    "{x:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
                     r.s,
                     err(r.s),
                     r.f,
                     err(r.f),
                     r.g,
-                    err(r.g)
+                    err(r.g),
+                    tg.g_t,
+                    gt_err,
+                    tg.f_t,
+                    ft_err,
+                    tg.h,
+                    h_err
                 );
             }
             text
@@ -141,10 +168,12 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
         Format::Json => {
             let v: Vec<serde_json::Value> = rows
                 .iter()
-                .map(|(x, r)| {
+                .map(|(x, r, tg)| {
+                    let [gt_err, ft_err, h_err] = tangential_err(*x, tg);
                     serde_json::json!({
                         "qd": x, "S": r.s, "S_err": err(r.s), "f": r.f, "f_err": err(r.f),
-                        "g": r.g, "g_err": err(r.g),
+                        "g": r.g, "g_err": err(r.g), "g_t": tg.g_t, "g_t_err": gt_err,
+                        "f_t": tg.f_t, "f_t_err": ft_err, "h": tg.h, "h_err": h_err,
                     })
                 })
                 .collect();
