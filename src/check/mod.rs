@@ -167,6 +167,45 @@ impl Checks {
     }
 }
 
+/// The largest sliding friction coefficient accepted (`load.friction`): rubber on clean steel
+/// reaches 2–4; beyond 10 the value is a typo.
+pub const MAX_FRICTION: f64 = 10.0;
+
+/// How the peak interface shear is read from its distribution (notes.md, "Distributions and
+/// peak values" and "Sliding friction").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ShearTail {
+    /// The paper's rule: |τ| half-normal with the total rms τ_rms (static contact only).
+    HalfNormal,
+    /// |τ| of the vector (μp0 + X, Y), X and Y independent Gaussians ([`crate::tail`]).
+    Vector,
+}
+
+impl ShearTail {
+    pub fn name(self) -> &'static str {
+        match self {
+            ShearTail::HalfNormal => "half-normal",
+            ShearTail::Vector => "vector",
+        }
+    }
+
+    pub fn from_name(s: &str) -> Option<Self> {
+        [ShearTail::HalfNormal, ShearTail::Vector]
+            .into_iter()
+            .find(|t| t.name() == s.trim())
+    }
+
+    /// The rule in force: the one asked for, else half-normal without friction and vector with.
+    pub fn resolve(asked: Option<ShearTail>, friction: f64) -> ShearTail {
+        asked.unwrap_or(if friction > 0.0 {
+            ShearTail::Vector
+        } else {
+            ShearTail::HalfNormal
+        })
+    }
+}
+
 /// Pass/fail criteria.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Criteria {
@@ -175,6 +214,9 @@ pub struct Criteria {
     /// Limits are strengths divided by this (≥ 1).
     pub safety_factor: f64,
     pub checks: Checks,
+    /// The peak-shear rule asked for (`None`: [`ShearTail::resolve`]'s default).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shear_tail: Option<ShearTail>,
 }
 
 impl Default for Criteria {
@@ -183,6 +225,7 @@ impl Default for Criteria {
             epsilon: crate::prec::DEFAULT_EPSILON,
             safety_factor: 1.0,
             checks: Checks::all(),
+            shear_tail: None,
         }
     }
 }
@@ -197,6 +240,8 @@ pub struct Design {
     pub yield_strength: Option<f64>,
     /// Bond shear strength (Pa).
     pub bond_strength: f64,
+    /// Sliding friction coefficient μ (0: static contact).
+    pub friction: f64,
     pub criteria: Criteria,
 }
 

@@ -111,11 +111,21 @@ pub(crate) fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
         "nominal pressure p0".into(),
         format!("{} MPa", mpa(scene.pressure)),
     ));
+    if scene.friction > 0.0 {
+        rows.push((
+            "sliding friction mu".into(),
+            format!("{} (traction mu p along x)", scene.friction),
+        ));
+    }
     let c = &scene.criteria;
+    let tail = match c.shear_tail {
+        Some(t) => format!(", shear tail: {}", t.name()),
+        None => String::new(),
+    };
     rows.push((
         "criteria".into(),
         format!(
-            "epsilon = {:e}, safety factor = {}, checks: {}",
+            "epsilon = {:e}, safety factor = {}, checks: {}{tail}",
             c.epsilon,
             c.safety_factor,
             enabled_names(scene).join(", ")

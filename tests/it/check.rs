@@ -35,7 +35,9 @@ pub(crate) fn paper_design(checks: Checks, bond: f64, yield_strength: f64) -> De
         pressure: 1e5,
         yield_strength: Some(yield_strength),
         bond_strength: bond,
+        friction: 0.0,
         criteria: Criteria {
+            shear_tail: None,
             epsilon: 1e-6,
             safety_factor: 1.0,
             checks,

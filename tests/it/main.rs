@@ -27,6 +27,7 @@ mod psd_moments;
 mod psd_read;
 mod report_browser;
 mod schema;
+mod sliding;
 mod stack;
 mod tail;
 mod tangential;
