@@ -7,6 +7,10 @@
 //! - `substrate-yield`: the mean pressure in real contact p0·A0/A (A/A0 = P(q1), eq. B11) and the
 //!   ε-peak of the interface normal stress (Persson's form centred at p0 with the interface width
 //!   σ_rms(d), eq. B8) must not exceed σ_yield / safety factor; the larger governs.
+//! - Under sliding (`load.friction` μ > 0, [`crate::contact::SlidingShear`]) or with the vector
+//!   rule ([`ShearTail::Vector`]), bond-shear's peak is that of |τ| for the vector (μp0 + X, Y)
+//!   ([`crate::tail`]), P(|τ| > τ_bond) likewise, and substrate-yield's interface σ_rms includes
+//!   the friction-driven part.
 //! - `min-thickness`: the smallest d_min such that the checks above pass at every d ≥ d_min. The
 //!   given thickness passes it when d ≥ d_min.
 //!
@@ -276,6 +280,12 @@ pub struct Evaluation {
     pub yield_exceedance: Option<f64>,
     /// bond-shear and substrate-yield (those enabled).
     pub checks: Vec<CheckResult>,
+    /// The rule `tau_peak` and `bond_exceedance` follow.
+    pub shear_tail: ShearTail,
+    /// The interface shear vector, when the vector rule is in force (friction or asked for).
+    pub sliding: Option<crate::contact::SlidingShear>,
+    /// The paper's half-normal peak of the static shear, beside a sliding `tau_peak`.
+    pub tau_peak_static: Option<Estimate>,
 }
 
 /// The minimum thickness.

@@ -5,7 +5,7 @@
 use super::evaluate::{Point, Scratch, evaluate_on};
 use super::graded::Graded;
 use super::grid::{Grid, Knots};
-use super::kernels::Kernels;
+use super::kernels::{Kernels, Mix};
 use super::{Contact, MAX_REFINE, Request};
 use crate::error::Error;
 use crate::layer::{Bilayer, KernelTable, Stack};
@@ -149,6 +149,18 @@ impl Engine {
 
     /// Evaluate at one stack (thickness) and nominal pressure p0 (Pa).
     pub fn evaluate(&self, stack: &Stack, p0: f64, request: Request) -> Result<Contact, Error> {
+        self.evaluate_mixed(stack, p0, request, Mix::Static)
+    }
+
+    /// [`Self::evaluate`] with the interface integrals' kernels chosen by `mix` (its σ and τ
+    /// slots are returned as `sigma_rms_interface` and `tau_rms_interface`).
+    pub(super) fn evaluate_mixed(
+        &self,
+        stack: &Stack,
+        p0: f64,
+        request: Request,
+        mix: Mix,
+    ) -> Result<Contact, Error> {
         if !(p0.is_finite() && p0 > 0.0) {
             return Err(Error::invalid(
                 "nominal pressure p0",
@@ -168,6 +180,19 @@ impl Engine {
                 d: stack.thickness,
             },
         };
+        let mixed;
+        let kernels = match mix {
+            Mix::Static => &kernels,
+            _ => {
+                mixed = Kernels::Mixed {
+                    base: &kernels,
+                    layers: &stack.layers,
+                    d: stack.thickness,
+                    mix,
+                };
+                &mixed
+            }
+        };
         let mut evaluations = 0;
         let mut interface = 0;
         let mut last = None;
@@ -181,7 +206,7 @@ impl Engine {
             let point = Point {
                 grid,
                 graded,
-                kernels: &kernels,
+                kernels,
                 stack,
                 p0,
                 req: request,

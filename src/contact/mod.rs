@@ -14,7 +14,8 @@
 //! `graded` (the interface integrals' graded panels near q_L), `kernels` (S⁻², f², g² at the
 //! nodes), `engine` (the [`Engine`] and what it caches per spectrum), `evaluate` (one
 //! evaluation on one grid, in phases), `probability` (P, its slope and derivatives) and
-//! `distributions` (Appendix B's stress distributions and peak values).
+//! `distributions` (Appendix B's stress distributions and peak values); `sliding` the same
+//! integrals under a friction traction (not in the paper).
 //!
 //! Every result is an [`Estimate`]: if the estimate misses rtol, the
 //! evaluation is repeated on grids with panels halved, up to [`MAX_REFINE`] times, and reports
@@ -27,9 +28,11 @@ mod graded;
 mod grid;
 mod kernels;
 mod probability;
+mod sliding;
 
 pub use distributions::{NormalStress, tau_exceedance, tau_pdf, tau_peak};
 pub use engine::{Engine, ROUNDING_FLOOR, panel_width};
+pub use sliding::{SlidingShear, friction_coupling};
 
 use crate::prec::Estimate;
 use serde::Serialize;

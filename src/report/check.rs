@@ -4,7 +4,11 @@
 //! `sigma_rms_top_pa`, `sigma_rms_interface_pa`, `tau_rms_interface_pa`, `tau_peak_pa`,
 //! `sigma_peak_interface_pa`, `e_eff_over_e_film`, `min_thickness_m`, `governing_check` and
 //! `checks`, each numeric result with a sibling `<key>_err` (its numerical error estimate), plus
-//! the inputs and warnings.
+//! the inputs and warnings. Under the vector shear rule (sliding friction, or asked for) it also
+//! carries `shear_tail`, `friction`, `mean_interface_shear_pa`, `tau_x_rms_interface_pa`,
+//! `tau_y_rms_interface_pa` (each with `_err`), `tau_peak_static_pa` (the paper's rule on the
+//! static shear, with `_err`) and `friction_coupling`; `tau_peak_pa` is then the vector's peak and
+//! `sigma_rms_interface_pa` includes the friction-driven part.
 
 use super::{Format, batch, modulus, mpa, sig, table, um, verify};
 use crate::check::{CheckKind, CheckResult, Outcome};
@@ -184,19 +188,57 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
         Some(ev.mean_contact_pressure),
         &mpa_unit,
     );
+    let friction = ev.sliding.map_or(0.0, |s| s.friction);
     row("sigma_rms top surface", c.sigma_rms_top, &mpa_unit);
-    row("sigma_rms interface", c.sigma_rms_interface, &mpa_unit);
+    row(
+        if friction > 0.0 {
+            "sigma_rms interface (with the friction-driven part)"
+        } else {
+            "sigma_rms interface"
+        },
+        c.sigma_rms_interface,
+        &mpa_unit,
+    );
     row(
         "sigma_peak interface (exceedance epsilon)",
         ev.sigma_peak_interface,
         &mpa_unit,
     );
     row("tau_rms interface", c.tau_rms_interface, &mpa_unit);
-    row(
-        "tau_peak interface (exceedance epsilon)",
-        ev.tau_peak,
-        &mpa_unit,
-    );
+    match &ev.sliding {
+        Some(s) => {
+            row(
+                "mean interface shear mu·p0 (along x)",
+                Some(s.mean),
+                &mpa_unit,
+            );
+            row(
+                "tau_x rms interface (fluctuation along x)",
+                Some(s.tau_x_rms),
+                &mpa_unit,
+            );
+            row(
+                "tau_y rms interface (fluctuation along y)",
+                Some(s.tau_y_rms),
+                &mpa_unit,
+            );
+            row(
+                "tau_peak interface (vector rule: |tau| of (mu·p0 + X, Y), exceedance epsilon)",
+                ev.tau_peak,
+                &mpa_unit,
+            );
+            row(
+                "tau_peak static (paper's half-normal rule)",
+                ev.tau_peak_static,
+                &mpa_unit,
+            );
+        }
+        None => row(
+            "tau_peak interface (exceedance epsilon)",
+            ev.tau_peak,
+            &mpa_unit,
+        ),
+    }
     rows.push([
         "share of G(q1) from the lowest octave".into(),
         sig(c.low_octave_share, 3),
@@ -204,6 +246,17 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
     ]);
     if let Some(p) = ev.bond_exceedance {
         rows.push(["P(|tau| > bond strength)".into(), sig(p, 3), String::new()]);
+    }
+    if let Some(k) = ev
+        .sliding
+        .and_then(|s| s.coupling)
+        .filter(|_| friction > 0.0)
+    {
+        rows.push([
+            "coupling neglected (uncoupled approximation): max mu|c|/S".into(),
+            sig(k, 3),
+            String::new(),
+        ]);
     }
     if let Some(p) = ev.yield_exceedance {
         rows.push([
@@ -375,6 +428,15 @@ pub fn json(scene: &Scene, outcome: &Outcome) -> Value {
     put(&mut m, "tau_peak_pa", ev.tau_peak);
     put(&mut m, "sigma_peak_interface_pa", ev.sigma_peak_interface);
     put(&mut m, "e_eff_over_e_film", c.e_eff_over_e_film);
+    if let Some(s) = &ev.sliding {
+        m.insert("shear_tail".into(), json!(ev.shear_tail.name()));
+        m.insert("friction".into(), json!(s.friction));
+        put(&mut m, "mean_interface_shear_pa", Some(s.mean));
+        put(&mut m, "tau_x_rms_interface_pa", Some(s.tau_x_rms));
+        put(&mut m, "tau_y_rms_interface_pa", Some(s.tau_y_rms));
+        put(&mut m, "tau_peak_static_pa", ev.tau_peak_static);
+        m.insert("friction_coupling".into(), json!(s.coupling));
+    }
     m.insert("bond_exceedance".into(), json!(ev.bond_exceedance));
     m.insert("yield_exceedance".into(), json!(ev.yield_exceedance));
     let (dmin, dmin_gov) = match &outcome.min_thickness {
@@ -435,7 +497,7 @@ pub fn csv(scene: &Scene, outcome: &Outcome) -> Result<String, Error> {
     let ev = &outcome.evaluation;
     let c = &ev.contact;
     let num = |x: Option<f64>| x.map(|x| format!("{x:e}")).unwrap_or_default();
-    let rows: Vec<(&str, Option<Estimate>, &str)> = vec![
+    let mut rows: Vec<(&str, Option<Estimate>, &str)> = vec![
         ("area_fraction", Some(c.area_fraction), "1"),
         (
             "mean_contact_pressure",
@@ -454,6 +516,14 @@ pub fn csv(scene: &Scene, outcome: &Outcome) -> Result<String, Error> {
             "m",
         ),
     ];
+    if let Some(s) = &ev.sliding {
+        rows.extend([
+            ("mean_interface_shear", Some(s.mean), "Pa"),
+            ("tau_x_rms_interface", Some(s.tau_x_rms), "Pa"),
+            ("tau_y_rms_interface", Some(s.tau_y_rms), "Pa"),
+            ("tau_peak_static", ev.tau_peak_static, "Pa"),
+        ]);
+    }
     w.write_record(["thickness", &format!("{:e}", outcome.thickness), "", "m"])
         .map_err(ser)?;
     w.write_record(["pressure", &format!("{:e}", scene.pressure), "", "Pa"])
