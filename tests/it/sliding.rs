@@ -288,3 +288,34 @@ fn paper_scene_vector_peaks_match_the_high_precision_tail() {
         assert_eq!(s.mean.value, m);
     }
 }
+
+/// d_min under sliding (vector rule, bond shear and substrate yield) against a dense
+/// brute-force scan of the full check (100 points per decade): in the scan's bracket, passing
+/// just above and failing just below, and never thinner than the static d_min (friction only
+/// adds shear). Friction μ = 0.02, 0.5 and 1, with bond strengths that put d_min inside the
+/// range. (Under sliding the peak of this scene keeps rising towards the floor, μσ_top
+/// growing as the film thins: no failing band with passing films below it.)
+#[test]
+fn d_min_under_sliding_matches_a_dense_scan() {
+    use crate::check::{assert_d_min_matches_brute_force, checker, paper_design};
+    use coatcheck::check::Checks;
+    let all = Checks::all();
+    for (mu, bond) in [(0.02, 1e6), (0.5, 2e6), (1.0, 3e6)] {
+        let mut design = paper_design(all, bond, 2.5e8);
+        design.friction = mu;
+        let c = checker(design);
+        let d_min = assert_d_min_matches_brute_force(&c, 100.0);
+        // Friction only adds shear: d_min is at least the static one.
+        let mut stat = paper_design(all, bond, 2.5e8);
+        stat.criteria.shear_tail = Some(coatcheck::check::ShearTail::Vector);
+        let s = checker(stat)
+            .min_thickness()
+            .unwrap()
+            .thickness
+            .map_or(0.0, |t| t.value);
+        assert!(
+            d_min >= s * (1.0 - coatcheck::check::D_MIN_RTOL),
+            "{mu}: {d_min} < {s}"
+        );
+    }
+}
