@@ -41,6 +41,7 @@
 //! |τ| is what is compared with the bond strength.
 
 mod fft;
+pub mod sliding;
 
 use crate::error::Error;
 use crate::layer::Stack;
