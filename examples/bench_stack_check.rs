@@ -27,6 +27,7 @@ fn main() {
         pressure: stack.pressure,
         yield_strength: stack.yield_strength,
         bond_strength: rubber.bond_strength,
+        friction: 0.0,
         criteria: stack.criteria,
     };
     // The two checks alternate, so that both see the same load on a shared machine; the ratio

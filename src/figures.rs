@@ -398,3 +398,46 @@ pub fn fig14(n: usize) -> Result<Figure, Error> {
         ],
     })
 }
+
+/// Bond shear strength marked on the sliding figure (the paper's epoxy), Pa.
+pub const BOND_SLIDING_FIG: f64 = 10e6;
+
+/// Not in the paper (which stops at static contact): the peak interface shear |τ| at exceedance
+/// 1e-6 against d under sliding friction μ = 0, 0.5, 1 (vector rule, [`crate::tail`]; the
+/// uncoupled approximation of [`crate::contact`]'s sliding module), Fig. 7's setting, with the
+/// bond strength marked. One engine serves every d and μ.
+pub fn sliding(n: usize) -> Result<Figure, Error> {
+    let engine = Engine::new(&fractal(1e5)?, Settings::default());
+    let d = log_space(1e-7, 1e-3, n);
+    let mut series_all = Vec::new();
+    for mu in [0.0, 0.5, 1.0] {
+        let label = format!("mu = {mu}");
+        series_all.push(series(&label, d.clone(), |d| {
+            let (_, s) = engine.evaluate_sliding(
+                &rubber_on_steel(0.5, d)?,
+                P0,
+                mu,
+                Request {
+                    tau_interface: true,
+                    ..Request::default()
+                },
+            )?;
+            let s = s.expect("shear requested");
+            let v =
+                crate::tail::ShearVector::new(s.mean.value, s.tau_x_rms.value, s.tau_y_rms.value)?;
+            let mut peak = v.peak(crate::prec::DEFAULT_EPSILON)?;
+            peak.err += s.tau_x_rms.rel_err().max(s.tau_y_rms.rel_err()) * peak.value;
+            checked(peak, "peak interface shear")
+        })?);
+    }
+    series_all.push(series("bond strength (epoxy)", d.clone(), |_| {
+        Ok(Estimate::exact(BOND_SLIDING_FIG))
+    })?);
+    Ok(Figure {
+        name: "sliding",
+        title: "Sliding: peak interface shear |tau| (eps = 1e-6) against film thickness (q0 = 1e5 1/m, p0 = 0.1 MPa)",
+        x: Axis::new("d", "um", Dim::Length(1), true),
+        y: Axis::new("peak |tau|", "MPa", Dim::Pressure, true),
+        series: series_all,
+    })
+}

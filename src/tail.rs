@@ -53,6 +53,10 @@ pub const PEAK_TARGET_RTOL: f64 = 1e-10;
 /// Bisections of a θ-panel before giving up on `QUAD_RTOL`.
 const MAX_DEPTH: u32 = 40;
 
+/// (level − m)/s beyond which e^{−gap²/2} < 5e−324 (the smallest subnormal double):
+/// √(2 · 745.2) = 38.6.
+const UNDERFLOW_GAP: f64 = 38.61;
+
 /// Below this ratio to the larger rms, a component is treated as zero.
 const NEGLIGIBLE: f64 = 1e-20;
 
@@ -93,8 +97,14 @@ impl ShearVector {
     }
 
     /// P(|τ| > level) with its error estimate (underflows to 0 below about 1e−308; use
-    /// [`Self::ln_exceedance`] there).
+    /// [`Self::ln_exceedance`] there). Where the bound P ≤ e^{−(level − m)²/(2 s²)}
+    /// (s = max(sx, sy)) is below the smallest subnormal double, 0 at once (ln P itself is not
+    /// needed there, and its polar quadrature slows down as (level − m)/s grows).
     pub fn exceedance(&self, level: f64) -> Estimate {
+        let s = self.sx.max(self.sy);
+        if level > self.mean && s > 0.0 && (level - self.mean) / s > UNDERFLOW_GAP {
+            return Estimate::new(0.0, f64::from_bits(1), Termination::Exact);
+        }
         let l = self.ln_exceedance(level).ln_p;
         let p = l.value.exp();
         Estimate::new(p, p * l.err.exp_m1() + 4.0 * EPS * p, l.status)

@@ -44,6 +44,7 @@
 //! interface ([`solve_stack`], [`stack_interface_fields`]).
 
 mod fft;
+pub mod sliding;
 mod stack;
 pub use stack::{solve_stack, stack_interface_fields};
 

@@ -4,11 +4,12 @@
 
 use super::criteria::{limit, upper_check, yield_governing};
 use super::*;
-use crate::contact::{self, Engine, NormalStress, Request};
+use crate::contact::{self, Contact, Engine, NormalStress, Request, SlidingShear};
 use crate::error::Error;
 use crate::layer::Stack;
 use crate::prec::{Settings, Termination};
 use crate::psd::Spectrum;
+use crate::tail::ShearVector;
 use rayon::prelude::*;
 
 /// One spectrum and one design, with the engine's d-independent precomputation.
@@ -101,19 +102,87 @@ impl Checker {
         limit(strength, self.design.criteria.safety_factor)
     }
 
-    /// Everything at one thickness: all engine quantities and the stress checks.
-    pub fn evaluate(&self, thickness: f64) -> Result<Evaluation, Error> {
-        let contact = self.engine.evaluate(
-            &self.stack(thickness)?,
-            self.design.pressure,
-            Request::all(),
-        )?;
-        self.assess(contact, true)
+    /// The peak-shear rule in force ([`ShearTail::resolve`]).
+    pub fn shear_tail(&self) -> ShearTail {
+        ShearTail::resolve(self.design.criteria.shear_tail, self.design.friction)
     }
 
-    /// The stress checks from a contact result. With `extras`, also the exceedances of the
-    /// limits themselves (not needed while searching for d_min).
-    fn assess(&self, contact: Contact, extras: bool) -> Result<Evaluation, Error> {
+    /// The engine quantities at one thickness, under sliding (the shear vector too) when the
+    /// design has friction or the vector rule is asked for.
+    fn contact(
+        &self,
+        engine: &Engine,
+        thickness: f64,
+        req: Request,
+    ) -> Result<(Contact, Option<SlidingShear>), Error> {
+        let (stack, p0, mu) = (
+            self.stack(thickness)?,
+            self.design.pressure,
+            self.design.friction,
+        );
+        if mu > 0.0 || self.shear_tail() == ShearTail::Vector {
+            engine.evaluate_sliding(&stack, p0, mu, req)
+        } else {
+            Ok((engine.evaluate(&stack, p0, req)?, None))
+        }
+    }
+
+    /// Everything at one thickness: all engine quantities and the stress checks.
+    pub fn evaluate(&self, thickness: f64) -> Result<Evaluation, Error> {
+        let (contact, mut sliding) = self.contact(&self.engine, thickness, Request::all())?;
+        if let Some(s) = sliding.as_mut() {
+            s.coupling = Some(contact::friction_coupling(
+                &self.stack(thickness)?,
+                s.friction,
+                (self.q_low, self.q_high),
+            ));
+        }
+        self.assess(contact, sliding, true)
+    }
+
+    /// The peak interface shear by the rule in force, with P(|τ| > τ_bond) when `extras`: the
+    /// paper's half-normal of τ_rms, or the vector's ([`ShearVector::peak`]; the rms errors
+    /// enter as their largest relative error times the peak, which is homogeneous of degree 1
+    /// and increasing in the mean and both rms).
+    fn shear_peak(
+        &self,
+        tau: Estimate,
+        sliding: Option<&SlidingShear>,
+        extras: bool,
+    ) -> Result<(Estimate, Option<f64>), Error> {
+        let d = &self.design;
+        let eps = d.criteria.epsilon;
+        match sliding {
+            Some(s) => {
+                let v = ShearVector::new(s.mean.value, s.tau_x_rms.value, s.tau_y_rms.value)?;
+                let mut peak = v.peak(eps)?;
+                let rel = s.tau_x_rms.rel_err().max(s.tau_y_rms.rel_err());
+                peak.err += rel * peak.value;
+                peak.status = Estimate::worst(
+                    peak.status,
+                    Estimate::worst(s.tau_x_rms.status, s.tau_y_rms.status),
+                );
+                let exceedance = extras.then(|| v.exceedance(d.bond_strength).value);
+                Ok((peak, exceedance))
+            }
+            None => {
+                let k = contact::tau_peak(1.0, eps);
+                let exceedance =
+                    extras.then(|| contact::tau_exceedance(tau.value, d.bond_strength));
+                Ok((tau.map(|t| k * t, |_| k), exceedance))
+            }
+        }
+    }
+
+    /// The stress checks from a contact result (and the shear vector under the vector rule).
+    /// With `extras`, also the exceedances of the limits themselves (not needed while
+    /// searching for d_min).
+    fn assess(
+        &self,
+        contact: Contact,
+        sliding: Option<SlidingShear>,
+        extras: bool,
+    ) -> Result<Evaluation, Error> {
         let d = &self.design;
         let eps = d.criteria.epsilon;
         let p0 = d.pressure;
@@ -127,10 +196,9 @@ impl Checker {
         let mean_contact_pressure = area.map(|a| p0 / a, |a| p0 / (a * a));
         let on = d.criteria.checks;
         let mut checks = Vec::new();
-        let (mut tau_peak, mut bond_exceedance) = (None, None);
+        let (mut tau_peak, mut bond_exceedance, mut tau_peak_static) = (None, None, None);
         if let Some(tau) = contact.tau_rms_interface {
-            let k = contact::tau_peak(1.0, eps);
-            let peak = tau.map(|t| k * t, |_| k);
+            let (peak, exceedance) = self.shear_peak(tau, sliding.as_ref(), extras)?;
             if on.bond_shear {
                 checks.push(upper_check(
                     CheckKind::BondShear,
@@ -139,8 +207,9 @@ impl Checker {
                 ));
             }
             tau_peak = Some(peak);
-            if extras {
-                bond_exceedance = Some(contact::tau_exceedance(tau.value, d.bond_strength));
+            bond_exceedance = exceedance;
+            if sliding.is_some() && extras {
+                tau_peak_static = Some(self.shear_peak(tau, None, false)?.0);
             }
         }
         let (mut sigma_peak_interface, mut yield_exceedance) = (None, None);
@@ -176,6 +245,9 @@ impl Checker {
             sigma_peak_interface,
             yield_exceedance,
             checks,
+            shear_tail: self.shear_tail(),
+            sliding,
+            tau_peak_static,
         })
     }
 
@@ -183,10 +255,8 @@ impl Checker {
     /// check that has the largest; only what those checks need is computed.
     fn utilisation(&self, thickness: f64) -> Result<Utilisation, Error> {
         let req = self.design.criteria.checks.request();
-        let contact = self
-            .search
-            .evaluate(&self.stack(thickness)?, self.design.pressure, req)?;
-        let ev = self.assess(contact, false)?;
+        let (contact, sliding) = self.contact(&self.search, thickness, req)?;
+        let ev = self.assess(contact, sliding, false)?;
         let mut worst = Utilisation {
             value: 0.0,
             rel_err: 0.0,
@@ -279,6 +349,16 @@ impl Checker {
             }
         }
         warnings.extend(self.validity_warnings(&evaluation.contact, thickness));
+        if let Some(c) = evaluation.sliding.and_then(|s| s.coupling)
+            && c > COUPLING_WARN
+        {
+            warnings.push(format!(
+                "the normal–tangential coupling the sliding theory neglects reaches mu|c|/S = \
+                 {c:.3} on the spectrum (> {COUPLING_WARN}): friction then changes the contact \
+                 pressure itself, which the uncoupled approximation does not follow, so the \
+                 sliding stresses are indicative only (check with the exact solver)"
+            ));
+        }
         // No NaN or infinity reaches a verdict: a non-finite value is a numerical failure.
         if let Some(c) = checks.iter().find(|c| {
             !(c.value.value.is_finite() && c.value.err.is_finite())

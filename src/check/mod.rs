@@ -7,6 +7,10 @@
 //! - `substrate-yield`: the mean pressure in real contact p0·A0/A (A/A0 = P(q1), eq. B11) and the
 //!   ε-peak of the interface normal stress (Persson's form centred at p0 with the interface width
 //!   σ_rms(d), eq. B8) must not exceed σ_yield / safety factor; the larger governs.
+//! - Under sliding (`load.friction` μ > 0, [`crate::contact::SlidingShear`]) or with the vector
+//!   rule ([`ShearTail::Vector`]), bond-shear's peak is that of |τ| for the vector (μp0 + X, Y)
+//!   ([`crate::tail`]), P(|τ| > τ_bond) likewise, and substrate-yield's interface σ_rms includes
+//!   the friction-driven part.
 //! - `min-thickness`: the smallest d_min such that the checks above pass at every d ≥ d_min. The
 //!   given thickness passes it when d ≥ d_min.
 //!
@@ -97,6 +101,11 @@ pub const FULL_CONTACT_WARN: f64 = 0.9;
 /// Rms slope above which small-slope linear elasticity is strained (the paper uses ξ = 1).
 pub const SLOPE_WARN: f64 = 1.0 + 1e-6;
 
+/// Above this largest μ|c|/S over the spectrum (the normal–tangential coupling the sliding
+/// theory neglects, [`crate::contact::friction_coupling`]) a run warns: the neglected term is
+/// then as large as the one kept.
+pub const COUPLING_WARN: f64 = 1.0;
+
 /// The thinnest film considered (m).
 pub const THINNEST: f64 = 1e-9;
 
@@ -173,6 +182,45 @@ impl Checks {
     }
 }
 
+/// The largest sliding friction coefficient accepted (`load.friction`): rubber on clean steel
+/// reaches 2–4; beyond 10 the value is a typo.
+pub const MAX_FRICTION: f64 = 10.0;
+
+/// How the peak interface shear is read from its distribution (notes.md, "Distributions and
+/// peak values" and "Sliding friction").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ShearTail {
+    /// The paper's rule: |τ| half-normal with the total rms τ_rms (static contact only).
+    HalfNormal,
+    /// |τ| of the vector (μp0 + X, Y), X and Y independent Gaussians ([`crate::tail`]).
+    Vector,
+}
+
+impl ShearTail {
+    pub fn name(self) -> &'static str {
+        match self {
+            ShearTail::HalfNormal => "half-normal",
+            ShearTail::Vector => "vector",
+        }
+    }
+
+    pub fn from_name(s: &str) -> Option<Self> {
+        [ShearTail::HalfNormal, ShearTail::Vector]
+            .into_iter()
+            .find(|t| t.name() == s.trim())
+    }
+
+    /// The rule in force: the one asked for, else half-normal without friction and vector with.
+    pub fn resolve(asked: Option<ShearTail>, friction: f64) -> ShearTail {
+        asked.unwrap_or(if friction > 0.0 {
+            ShearTail::Vector
+        } else {
+            ShearTail::HalfNormal
+        })
+    }
+}
+
 /// Pass/fail criteria.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Criteria {
@@ -181,6 +229,9 @@ pub struct Criteria {
     /// Limits are strengths divided by this (≥ 1).
     pub safety_factor: f64,
     pub checks: Checks,
+    /// The peak-shear rule asked for (`None`: [`ShearTail::resolve`]'s default).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shear_tail: Option<ShearTail>,
 }
 
 impl Default for Criteria {
@@ -189,6 +240,7 @@ impl Default for Criteria {
             epsilon: crate::prec::DEFAULT_EPSILON,
             safety_factor: 1.0,
             checks: Checks::all(),
+            shear_tail: None,
         }
     }
 }
@@ -203,6 +255,8 @@ pub struct Design {
     pub yield_strength: Option<f64>,
     /// Bond shear strength (Pa).
     pub bond_strength: f64,
+    /// Sliding friction coefficient μ (0: static contact).
+    pub friction: f64,
     pub criteria: Criteria,
 }
 
@@ -237,6 +291,12 @@ pub struct Evaluation {
     pub yield_exceedance: Option<f64>,
     /// bond-shear and substrate-yield (those enabled).
     pub checks: Vec<CheckResult>,
+    /// The rule `tau_peak` and `bond_exceedance` follow.
+    pub shear_tail: ShearTail,
+    /// The interface shear vector, when the vector rule is in force (friction or asked for).
+    pub sliding: Option<crate::contact::SlidingShear>,
+    /// The paper's half-normal peak of the static shear, beside a sliding `tau_peak`.
+    pub tau_peak_static: Option<Estimate>,
 }
 
 /// The minimum thickness.

@@ -21,6 +21,8 @@ fn refuse(args: &CheckArgs, scene: &Scene) -> Result<(), Error> {
             "several roughness files",
             !scene.roughness.more_files.is_empty(),
         ),
+        ("load.friction (sliding)", scene.friction > 0.0),
+        ("criteria.shear_tail", scene.criteria.shear_tail.is_some()),
     ];
     match given.iter().find(|(_, on)| *on) {
         Some((what, _)) => Err(Error::Value {

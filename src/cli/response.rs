@@ -1,10 +1,12 @@
 //! `coatcheck response`: S(qd), f(qd), g(qd) for a film on a substrate (the paper's Fig. 14 as
-//! numbers), or S(q) and f_k(q), g_k(q) at every interface of a layer stack (`--layer`, in
-//! [`super::response_stack`]).
+//! numbers), and beside them the tangential-load kernels g_t, f_t, h
+//! ([`coatcheck::layer::tangential`]); or S(q) and f_k(q), g_k(q) at every interface of a layer
+//! stack (`--layer`, in [`super::response_stack`]).
 
 use clap::{Args, ValueEnum};
 use coatcheck::Error;
-use coatcheck::layer::{Bilayer, Elastic};
+use coatcheck::layer::tangential::{TANGENTIAL_RTOL, TangentialResponse};
+use coatcheck::layer::{Bilayer, Elastic, Response};
 use coatcheck::prec::{KERNEL_RTOL, SMALLEST_SUBNORMAL};
 use coatcheck::units::{Dim, parse_quantity};
 
@@ -113,12 +115,29 @@ pub(super) fn parse_values(
 /// smallest subnormal for a value below f64's normal range (f and g above q·d ≈ 700 round into
 /// the subnormals, and to 0 beyond them).
 fn err(v: f64) -> f64 {
-    let rounding = if v.abs() < f64::MIN_POSITIVE {
+    KERNEL_RTOL * v.abs() + flush(v)
+}
+
+/// The rounding of a value below the normal range (into the subnormals, or to 0), as the whole
+/// smallest subnormal.
+fn flush(v: f64) -> f64 {
+    if v.abs() < f64::MIN_POSITIVE {
         SMALLEST_SUBNORMAL
     } else {
         0.0
-    };
-    KERNEL_RTOL * v.abs() + rounding
+    }
+}
+
+/// The error estimates of g_t, f_t, h (absolute): relative [`TANGENTIAL_RTOL`], for g_t
+/// absolute in units of e^{−qd}/100 where it is smaller than that (near its zero), plus the
+/// flush below the normal range.
+fn tangential_err(x: f64, t: &TangentialResponse) -> [f64; 3] {
+    let floor = 0.01 * (-x).exp();
+    [
+        TANGENTIAL_RTOL * t.g_t.abs().max(floor) + flush(t.g_t),
+        TANGENTIAL_RTOL * t.f_t.abs() + flush(t.f_t),
+        TANGENTIAL_RTOL * t.h.abs() + flush(t.h),
+    ]
 }
 
 pub fn run(args: ResponseArgs) -> Result<i32, Error> {
@@ -130,23 +149,29 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
         elastic("--substrate", &args.substrate)?,
     );
     let qd = parse_grid("--qd", qd)?;
-    let rows: Vec<(f64, coatcheck::layer::Response)> =
-        qd.iter().map(|&x| (x, pair.response(x))).collect();
+    let rows: Vec<(f64, Response, TangentialResponse)> = qd
+        .iter()
+        .map(|&x| (x, pair.response(x), pair.tangential(x)))
+        .collect();
     let text = match args.format {
         Format::Table => {
-            let mut t = coatcheck::report::table(&["q·d", "S", "f", "g"]);
-            for (x, r) in &rows {
+            let mut t = coatcheck::report::table(&["q·d", "S", "f", "g", "g_t", "f_t", "h"]);
+            for (x, r, tg) in &rows {
                 t.add_row([
                     format!("{x:.4e}"),
                     format!("{:.10e}", r.s),
                     format!("{:.10e}", r.f),
                     format!("{:.10e}", r.g),
+                    format!("{:.10e}", tg.g_t),
+                    format!("{:.10e}", tg.f_t),
+                    format!("{:.10e}", tg.h),
                 ]);
             }
             let note = coatcheck::report::wrap(&format!(
                 "error estimate: relative {KERNEL_RTOL:e} for each of S, f, g, plus 5e-324 \
                  below 2.2e-308 (the bound verified against a 100-digit solution over qd \
-                 1e-8..1e4, E0/E1 1e-8..1e8, nu 0..0.5)"
+                 1e-8..1e4, E0/E1 1e-8..1e8, nu 0..0.5); relative {TANGENTIAL_RTOL:e} for g_t, \
+                 f_t, h (for g_t near its zero absolute, {TANGENTIAL_RTOL:e} e^-qd/100)"
             ));
             format!("{t}\n{note}\n")
         }
@@ -156,10 +181,12 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
             coatcheck::report::finite_only(&csv(&rows))?;
             let v: Vec<serde_json::Value> = rows
                 .iter()
-                .map(|(x, r)| {
+                .map(|(x, r, tg)| {
+                    let [gt_err, ft_err, h_err] = tangential_err(*x, tg);
                     serde_json::json!({
                         "qd": x, "S": r.s, "S_err": err(r.s), "f": r.f, "f_err": err(r.f),
-                        "g": r.g, "g_err": err(r.g),
+                        "g": r.g, "g_err": err(r.g), "g_t": tg.g_t, "g_t_err": gt_err,
+                        "f_t": tg.f_t, "f_t_err": ft_err, "h": tg.h, "h_err": h_err,
                     })
                 })
                 .collect();
@@ -174,17 +201,24 @@ pub fn run(args: ResponseArgs) -> Result<i32, Error> {
 }
 
 /// The kernels at the q·d values as CSV, with their error estimates.
-fn csv(rows: &[(f64, coatcheck::layer::Response)]) -> String {
-    let mut text = String::from("qd,S,S_err,f,f_err,g,g_err\n");
-    for (x, r) in rows {
+fn csv(rows: &[(f64, Response, TangentialResponse)]) -> String {
+    let mut text = String::from("qd,S,S_err,f,f_err,g,g_err,g_t,g_t_err,f_t,f_t_err,h,h_err\n");
+    for (x, r, tg) in rows {
+        let [gt_err, ft_err, h_err] = tangential_err(*x, tg);
         text += &format!(
-            "{x:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
+            "{x:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
             r.s,
             err(r.s),
             r.f,
             err(r.f),
             r.g,
-            err(r.g)
+            err(r.g),
+            tg.g_t,
+            gt_err,
+            tg.f_t,
+            ft_err,
+            tg.h,
+            h_err
         );
     }
     text

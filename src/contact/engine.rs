@@ -5,9 +5,10 @@
 use super::evaluate::{Point, Scratch, evaluate_on};
 use super::graded::Graded;
 use super::grid::{Grid, Knots};
-use super::kernels::Kernels;
+use super::kernels::{Kernels, Mix};
 use super::{Contact, MAX_REFINE, Request};
 use crate::error::Error;
+use crate::layer::tangential::TANGENTIAL_RTOL;
 use crate::layer::{Bilayer, KernelTable, Stack};
 use crate::prec::{EPS, Estimate, INTERFACE_ATOL, KERNEL_RTOL, Settings, Termination};
 use crate::psd::Spectrum;
@@ -149,6 +150,18 @@ impl Engine {
 
     /// Evaluate at one stack (thickness) and nominal pressure p0 (Pa).
     pub fn evaluate(&self, stack: &Stack, p0: f64, request: Request) -> Result<Contact, Error> {
+        self.evaluate_mixed(stack, p0, request, Mix::Static)
+    }
+
+    /// [`Self::evaluate`] with the interface integrals' kernels chosen by `mix` (its σ and τ
+    /// slots are returned as `sigma_rms_interface` and `tau_rms_interface`).
+    pub(super) fn evaluate_mixed(
+        &self,
+        stack: &Stack,
+        p0: f64,
+        request: Request,
+        mix: Mix,
+    ) -> Result<Contact, Error> {
         if !(p0.is_finite() && p0 > 0.0) {
             return Err(Error::invalid(
                 "nominal pressure p0",
@@ -162,12 +175,17 @@ impl Engine {
             &stack.layers,
             stack.thickness,
             self.spectrum.q_low(),
-        );
+        )
+        .mixed(mix);
+        let kernel_rtol = match mix {
+            Mix::Static => KERNEL_RTOL,
+            _ => KERNEL_RTOL.max(TANGENTIAL_RTOL),
+        };
         let at = At {
             depth: stack.thickness,
             e_top: stack.layers.film.e_star(),
             p0,
-            kernel_rtol: KERNEL_RTOL,
+            kernel_rtol,
         };
         self.refine(&kernels, at, request)
     }

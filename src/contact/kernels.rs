@@ -12,6 +12,14 @@
 //! rms ([`Kernels::shift`]). Every node there has q·d > [`X_SHIFT`] > [`crate::layer::X_FAR`],
 //! where S = 1 and the table holds no f, g panels, and the integrals stop within a few q·d of
 //! q_L d, so the exact forms cost a few hundred evaluations.
+//!
+//! Under sliding ([`super::sliding`]) the interface integrals take other kernels in the two
+//! slots of f² and g² ([`Mix`]), from the exact tangential kernels
+//! ([`crate::layer::tangential`]): every mix is a sum of squares, and like f², g² decreases
+//! above q·d = 20 (each of g_t, f_t, h is (a + b x)e^{−x} there, with its zero, if any, below
+//! x = 2), which the interface integrals' cut relies on. Where the kernels are scaled (thick
+//! films), the tangential kernels are scaled alike; they flush to 0 above q·d ≈ 745, so the
+//! friction-driven parts are lost there (terms below e^{−1490} of the static ones).
 
 use crate::layer::stack::{MAX_LAYERS, Stack};
 use crate::layer::{Bilayer, KernelTable, Nodes, Squared};
@@ -23,7 +31,50 @@ use std::collections::HashMap;
 /// range.
 pub(super) const X_SHIFT: f64 = 200.0;
 
+/// What the interface integrals' two slots (σ, τ) integrate against P and S⁻².
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Mix {
+    /// f², g² (eqs. B8–B9).
+    Static,
+    /// f² + μ² f_t²/2 (the interface normal stress with the friction-driven part) and g².
+    Sliding { mu2: f64 },
+    /// The friction-driven shear per unit μ²: ((g_t + h)/2)² + (g_t − h)²/8 along x and
+    /// (g_t − h)²/8 along y ([`super::sliding`]).
+    Friction,
+}
+
+impl Mix {
+    /// The two slots from the static f², g² (unused by [`Mix::Friction`]) at x = q·d, with the
+    /// tangential kernels scaled by e^{shift} (module doc).
+    #[inline]
+    fn apply(self, layers: &Bilayer, x: f64, shift: f64, (f2, g2): (f64, f64)) -> (f64, f64) {
+        let scaled = |v: f64| {
+            if shift > 0.0 {
+                let half = (0.5 * shift).exp();
+                v * half * half
+            } else {
+                v
+            }
+        };
+        match self {
+            Mix::Static => (f2, g2),
+            Mix::Sliding { mu2 } => {
+                let f_t = scaled(layers.tangential(x).f_t);
+                (f2 + 0.5 * mu2 * f_t * f_t, g2)
+            }
+            Mix::Friction => {
+                let t = layers.tangential(x);
+                let (g_t, h) = (scaled(t.g_t), scaled(t.h));
+                let (half_sum, diff) = (0.5 * (g_t + h), g_t - h);
+                let y = 0.125 * diff * diff;
+                (half_sum * half_sum + y, y)
+            }
+        }
+    }
+}
+
 /// Where the kernels come from.
+#[derive(Clone, Copy)]
 enum Source<'a> {
     Table {
         table: &'a KernelTable,
@@ -64,6 +115,7 @@ fn stack_at(stack: &Stack, memo: &StackMemo, k: usize, q: f64) -> (f64, f64, f64
 pub(super) struct Kernels<'a> {
     source: Source<'a>,
     shift: f64,
+    mix: Mix,
 }
 
 impl<'a> Kernels<'a> {
@@ -85,7 +137,35 @@ impl<'a> Kernels<'a> {
         };
         let x_low = q_low * d;
         let shift = if x_low > X_SHIFT { x_low } else { 0.0 };
-        Self { source, shift }
+        Self {
+            source,
+            shift,
+            mix: Mix::Static,
+        }
+    }
+
+    /// These kernels with the interface slots mixed by `mix` (sliding; one-layer films only:
+    /// stack kernels keep f_k², g_k²).
+    pub(super) fn mixed(self, mix: Mix) -> Self {
+        Self { mix, ..self }
+    }
+
+    /// The film and thickness of one-layer kernels.
+    fn bilayer(&self) -> Option<(&'a Bilayer, f64)> {
+        match self.source {
+            Source::Table { table, d, .. } => Some((table.layers(), d)),
+            Source::Exact { layers, d } => Some((layers, d)),
+            Source::Stack { .. } => None,
+        }
+    }
+
+    /// The interface slots `fg` (static f², g² at q, times e^{2s}) turned by the mix.
+    #[inline]
+    fn apply_mix(&self, q: f64, fg: (f64, f64)) -> (f64, f64) {
+        match (self.mix, self.bilayer()) {
+            (Mix::Static, _) | (_, None) => fg,
+            (mix, Some((layers, d))) => mix.apply(layers, q * d, self.shift, fg),
+        }
     }
 
     /// The kernels of `stack` at its interface `k` (unscaled: the stack's interface integrals
@@ -94,6 +174,7 @@ impl<'a> Kernels<'a> {
         Self {
             source: Source::Stack { stack, k, memo },
             shift: 0.0,
+            mix: Mix::Static,
         }
     }
 
@@ -131,6 +212,17 @@ impl<'a> Kernels<'a> {
     /// f², g² at the node (times e^{2s}).
     #[inline]
     pub(super) fn interface(&self, q: f64, u: f64) -> (f64, f64) {
+        let fg = if self.mix == Mix::Friction {
+            (0.0, 0.0)
+        } else {
+            self.static_interface(q, u)
+        };
+        self.apply_mix(q, fg)
+    }
+
+    /// f², g² at the node (times e^{2s}), before the mix.
+    #[inline]
+    fn static_interface(&self, q: f64, u: f64) -> (f64, f64) {
         if self.shift > 0.0 {
             return self.shifted(q);
         }
@@ -162,8 +254,13 @@ impl<'a> Kernels<'a> {
     /// f², g² (times e^{2s}) at the ascending nodes (q, u), into `f2` and `g2`.
     pub(super) fn interface_many(&self, q: &[f64], u: &[f64], f2: &mut [f64], g2: &mut [f64]) {
         match self.source {
-            Source::Table { table, d, ln_d } if self.shift == 0.0 => {
-                table.interface_many(Nodes { q, u, d, ln_d }, f2, g2)
+            Source::Table { table, d, ln_d } if self.shift == 0.0 && self.mix != Mix::Friction => {
+                table.interface_many(Nodes { q, u, d, ln_d }, f2, g2);
+                if self.mix != Mix::Static {
+                    for ((fo, go), &q) in f2.iter_mut().zip(g2.iter_mut()).zip(q) {
+                        (*fo, *go) = self.apply_mix(q, (*fo, *go));
+                    }
+                }
             }
             _ => {
                 for (((fo, go), &q), &u) in f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u) {
@@ -173,9 +270,25 @@ impl<'a> Kernels<'a> {
         }
     }
 
-    /// S⁻², f², g² (the latter times e^{2s}) at the node.
+    /// S⁻², f², g² (the latter times e^{2s}, and mixed) at the node.
     #[inline]
     pub(super) fn squared(&self, q: f64, u: f64) -> Squared {
+        let s = self.static_squared(q, u);
+        if self.mix == Mix::Static {
+            return s;
+        }
+        let fg = if self.mix == Mix::Friction {
+            (0.0, 0.0)
+        } else {
+            (s.f2, s.g2)
+        };
+        let (f2, g2) = self.apply_mix(q, fg);
+        Squared { k: s.k, f2, g2 }
+    }
+
+    /// S⁻², f², g² (the latter times e^{2s}) at the node, before the mix.
+    #[inline]
+    fn static_squared(&self, q: f64, u: f64) -> Squared {
         if self.shift > 0.0 {
             let (f2, g2) = self.shifted(q);
             return Squared {

@@ -15,7 +15,8 @@
 //! nodes), `engine` (the [`Engine`] and what it caches per spectrum), `evaluate` (one
 //! evaluation on one grid, in phases), `probability` (P, its slope and derivatives) and
 //! `distributions` (Appendix B's stress distributions and peak values), `stack` (the same on a
-//! layer stack, at every interface).
+//! layer stack, at every interface); `sliding` the same integrals under a friction traction
+//! (not in the paper).
 //!
 //! Every result is an [`Estimate`]: if the estimate misses rtol, the
 //! evaluation is repeated on grids with panels halved, up to [`MAX_REFINE`] times, and reports
@@ -30,10 +31,12 @@ mod graded;
 mod grid;
 mod kernels;
 mod probability;
+mod sliding;
 mod stack;
 
 pub use distributions::{NormalStress, tau_exceedance, tau_pdf, tau_peak};
 pub use engine::{Engine, ROUNDING_FLOOR, panel_width, rounding_floor};
+pub use sliding::{SlidingShear, friction_coupling};
 pub use stack::{InterfaceContact, StackContact};
 
 use crate::prec::Estimate;

@@ -64,6 +64,18 @@ pub struct Record {
     pub sigma_peak_interface_pa_err: Option<f64>,
     pub e_eff_over_e_film: Option<f64>,
     pub e_eff_over_e_film_err: Option<f64>,
+    /// Sliding friction μ, under the vector shear rule.
+    pub friction: Option<f64>,
+    /// Under the vector shear rule: the interface shear's mean μ·p0 and the rms of its x and y
+    /// fluctuations, and the paper's half-normal peak of the static shear (Pa).
+    pub mean_interface_shear_pa: Option<f64>,
+    pub mean_interface_shear_pa_err: Option<f64>,
+    pub tau_x_rms_interface_pa: Option<f64>,
+    pub tau_x_rms_interface_pa_err: Option<f64>,
+    pub tau_y_rms_interface_pa: Option<f64>,
+    pub tau_y_rms_interface_pa_err: Option<f64>,
+    pub tau_peak_static_pa: Option<f64>,
+    pub tau_peak_static_pa_err: Option<f64>,
     /// The worst roughness file when the scene lists several.
     pub worst_file: Option<String>,
     /// How many roughness files the scene was judged on (0 when it could not be evaluated).
@@ -135,6 +147,13 @@ impl Record {
         (r.tau_peak_pa, r.tau_peak_pa_err) = split(ev.tau_peak);
         (r.sigma_peak_interface_pa, r.sigma_peak_interface_pa_err) = split(ev.sigma_peak_interface);
         (r.e_eff_over_e_film, r.e_eff_over_e_film_err) = split(c.e_eff_over_e_film);
+        if let Some(s) = &ev.sliding {
+            r.friction = Some(s.friction);
+            (r.mean_interface_shear_pa, r.mean_interface_shear_pa_err) = split(Some(s.mean));
+            (r.tau_x_rms_interface_pa, r.tau_x_rms_interface_pa_err) = split(Some(s.tau_x_rms));
+            (r.tau_y_rms_interface_pa, r.tau_y_rms_interface_pa_err) = split(Some(s.tau_y_rms));
+            (r.tau_peak_static_pa, r.tau_peak_static_pa_err) = split(ev.tau_peak_static);
+        }
         r.checks = o
             .checks
             .iter()
@@ -291,6 +310,29 @@ const HEAD: &[Column] = &[
     ("e_eff_over_e_film", |r| Cell::Number(r.e_eff_over_e_film)),
     ("e_eff_over_e_film_err", |r| {
         Cell::Number(r.e_eff_over_e_film_err)
+    }),
+    ("friction", |r| Cell::Number(r.friction)),
+    ("mean_interface_shear_pa", |r| {
+        Cell::Number(r.mean_interface_shear_pa)
+    }),
+    ("mean_interface_shear_pa_err", |r| {
+        Cell::Number(r.mean_interface_shear_pa_err)
+    }),
+    ("tau_x_rms_interface_pa", |r| {
+        Cell::Number(r.tau_x_rms_interface_pa)
+    }),
+    ("tau_x_rms_interface_pa_err", |r| {
+        Cell::Number(r.tau_x_rms_interface_pa_err)
+    }),
+    ("tau_y_rms_interface_pa", |r| {
+        Cell::Number(r.tau_y_rms_interface_pa)
+    }),
+    ("tau_y_rms_interface_pa_err", |r| {
+        Cell::Number(r.tau_y_rms_interface_pa_err)
+    }),
+    ("tau_peak_static_pa", |r| Cell::Number(r.tau_peak_static_pa)),
+    ("tau_peak_static_pa_err", |r| {
+        Cell::Number(r.tau_peak_static_pa_err)
     }),
 ];
 

@@ -4,7 +4,12 @@
 //! `sigma_rms_top_pa`, `sigma_rms_interface_pa`, `tau_rms_interface_pa`, `tau_peak_pa`,
 //! `sigma_peak_interface_pa`, `e_eff_over_e_film`, `min_thickness_m`, `governing_check`,
 //! `checks` and `levers` (what alone would make a failing design pass), each numeric result with
-//! a sibling `<key>_err` (its numerical error estimate), plus the inputs and warnings.
+//! a sibling `<key>_err` (its numerical error estimate), plus the inputs and warnings. Under the
+//! vector shear rule (sliding friction, or asked for) it also carries `shear_tail`, `friction`,
+//! `mean_interface_shear_pa`, `tau_x_rms_interface_pa`, `tau_y_rms_interface_pa` (each with
+//! `_err`), `tau_peak_static_pa` (the paper's rule on the static shear, with `_err`) and
+//! `friction_coupling`; `tau_peak_pa` is then the vector's peak and `sigma_rms_interface_pa`
+//! includes the friction-driven part.
 
 use super::{
     Format, batch, margin_cell, modulus, mpa, sig, table, um, utilisation_cell, verify, wrap,
@@ -131,11 +136,21 @@ pub(crate) fn scene_rows(scene: &Scene) -> Vec<(String, String)> {
             ),
         ));
     }
+    if scene.friction > 0.0 {
+        rows.push((
+            "sliding friction mu".into(),
+            format!("{} (traction mu p along x)", scene.friction),
+        ));
+    }
     let c = &scene.criteria;
+    let tail = match c.shear_tail {
+        Some(t) => format!(", shear tail: {}", t.name()),
+        None => String::new(),
+    };
     rows.push((
         "criteria".into(),
         format!(
-            "epsilon = {:e}, safety factor = {}, checks: {}",
+            "epsilon = {:e}, safety factor = {}, checks: {}{tail}",
             c.epsilon,
             c.safety_factor,
             enabled_names(scene).join(", ")
@@ -208,9 +223,14 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
         Some(ev.mean_contact_pressure),
         &mpa_unit,
     );
+    let friction = ev.sliding.map_or(0.0, |s| s.friction);
     row("sigma_rms top surface", c.sigma_rms_top, &mpa_unit);
     row(
-        "sigma_rms interface",
+        if friction > 0.0 {
+            "sigma_rms interface (with the friction-driven part)"
+        } else {
+            "sigma_rms interface"
+        },
         c.sigma_rms_interface,
         stress(c.sigma_rms_interface),
     );
@@ -224,11 +244,40 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
         c.tau_rms_interface,
         stress(c.tau_rms_interface),
     );
-    row(
-        "tau_peak interface (exceedance epsilon)",
-        ev.tau_peak,
-        stress(ev.tau_peak),
-    );
+    match &ev.sliding {
+        Some(s) => {
+            row(
+                "mean interface shear mu·p0 (along x)",
+                Some(s.mean),
+                &mpa_unit,
+            );
+            row(
+                "tau_x rms interface (fluctuation along x)",
+                Some(s.tau_x_rms),
+                stress(Some(s.tau_x_rms)),
+            );
+            row(
+                "tau_y rms interface (fluctuation along y)",
+                Some(s.tau_y_rms),
+                stress(Some(s.tau_y_rms)),
+            );
+            row(
+                "tau_peak interface (vector rule: |tau| of (mu·p0 + X, Y), exceedance epsilon)",
+                ev.tau_peak,
+                stress(ev.tau_peak),
+            );
+            row(
+                "tau_peak static (paper's half-normal rule)",
+                ev.tau_peak_static,
+                stress(ev.tau_peak_static),
+            );
+        }
+        None => row(
+            "tau_peak interface (exceedance epsilon)",
+            ev.tau_peak,
+            stress(ev.tau_peak),
+        ),
+    }
     rows.push([
         "h_rms of the spectrum used".into(),
         format!("{} µm", um(outcome.h_rms)),
@@ -246,6 +295,17 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
     ]);
     if let Some(p) = ev.bond_exceedance {
         rows.push(["P(|tau| > bond strength)".into(), sig(p, 3), String::new()]);
+    }
+    if let Some(k) = ev
+        .sliding
+        .and_then(|s| s.coupling)
+        .filter(|_| friction > 0.0)
+    {
+        rows.push([
+            "coupling neglected (uncoupled approximation): max mu|c|/S".into(),
+            sig(k, 3),
+            String::new(),
+        ]);
     }
     if let Some(p) = ev.yield_exceedance {
         rows.push([
@@ -424,6 +484,15 @@ pub fn json(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> Value {
     put(&mut m, "tau_peak_pa", ev.tau_peak);
     put(&mut m, "sigma_peak_interface_pa", ev.sigma_peak_interface);
     put(&mut m, "e_eff_over_e_film", c.e_eff_over_e_film);
+    if let Some(s) = &ev.sliding {
+        m.insert("shear_tail".into(), json!(ev.shear_tail.name()));
+        m.insert("friction".into(), json!(s.friction));
+        put(&mut m, "mean_interface_shear_pa", Some(s.mean));
+        put(&mut m, "tau_x_rms_interface_pa", Some(s.tau_x_rms));
+        put(&mut m, "tau_y_rms_interface_pa", Some(s.tau_y_rms));
+        put(&mut m, "tau_peak_static_pa", ev.tau_peak_static);
+        m.insert("friction_coupling".into(), json!(s.coupling));
+    }
     m.insert("bond_exceedance".into(), json!(ev.bond_exceedance));
     m.insert("yield_exceedance".into(), json!(ev.yield_exceedance));
     let (dmin, dmin_gov) = match &outcome.min_thickness {

@@ -1,5 +1,6 @@
 //! The thickness sweep (the paper's Fig. 7 as a table): one row per thickness, as a table, JSON
-//! or CSV.
+//! or CSV. Under sliding friction the sliding columns ([`SLIDING`]) follow, so that the static
+//! and the sliding peak shear stand side by side.
 
 use super::{Format, mpa, sig, table, um};
 use crate::check::{CheckKind, Evaluation};
@@ -35,13 +36,36 @@ pub const SWEEP: &[(&str, &str, Getter)] = &[
     }),
 ];
 
+/// The columns added under sliding friction (`tau_peak` is then the vector rule's peak).
+pub const SLIDING: &[(&str, &str, Getter)] = &[
+    ("τ_peak st", "tau_peak_static_pa", |e| {
+        e.tau_peak_static.map(|x| x.value)
+    }),
+    ("τ_x rms", "tau_x_rms_interface_pa", |e| {
+        e.sliding.map(|s| s.tau_x_rms.value)
+    }),
+    ("τ_y rms", "tau_y_rms_interface_pa", |e| {
+        e.sliding.map(|s| s.tau_y_rms.value)
+    }),
+];
+
+/// The friction of a sweep under sliding (`None` when static).
+fn friction(rows: &[Evaluation]) -> Option<f64> {
+    rows.iter()
+        .find_map(|e| e.sliding.map(|s| s.friction))
+        .filter(|&mu| mu > 0.0)
+}
+
 /// The thickness sweep in the chosen format.
 pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
+    let mu = friction(rows);
+    let extra: &[(&str, &str, Getter)] = if mu.is_some() { SLIDING } else { &[] };
+    let cols: Vec<&(&str, &str, Getter)> = SWEEP.iter().chain(extra).collect();
     match format {
         Format::Table => {
             // Short headers (a unit line above) so that the table fits the width; σ_rms of the
             // top surface, nearly constant in d, is in JSON and CSV only.
-            let shown: Vec<_> = SWEEP
+            let shown: Vec<_> = cols
                 .iter()
                 .filter(|(_, k, _)| *k != "sigma_rms_top_pa")
                 .collect();
@@ -75,11 +99,18 @@ pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
                 });
                 t.add_row(cells);
             }
-            let caption = super::wrap(
-                "d in µm, stresses in MPa; fails: the checks failing at that thickness (bond: bond-shear, \
-                 yield: substrate-yield)",
-            );
-            Ok(format!("{caption}\n{t}\n"))
+            let mut caption =
+                "d in µm, stresses in MPa; fails: the checks failing at that thickness \
+                 (bond: bond-shear, yield: substrate-yield)"
+                    .to_string();
+            if let Some(mu) = mu {
+                caption += &format!(
+                    "; sliding with friction mu = {mu}: τ_peak int is |tau| of the shear vector \
+                     (mu p0 + X, Y) (vector rule), τ_peak st the paper's half-normal rule on the \
+                     static shear; σ columns include the friction-driven part"
+                );
+            }
+            Ok(format!("{}\n{t}\n", super::wrap(&caption)))
         }
         Format::Json => {
             // JSON shows NaN as null: the CSV of the same numbers is checked instead.
@@ -89,7 +120,7 @@ pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
                 .map(|ev| {
                     let mut m = Map::new();
                     m.insert("thickness_m".into(), json!(ev.contact.thickness));
-                    for (_, key, get) in SWEEP {
+                    for (_, key, get) in &cols {
                         m.insert((*key).into(), json!(get(ev)));
                     }
                     let checks: Vec<Value> = ev
@@ -117,11 +148,11 @@ pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
                 detail: e.to_string(),
             };
             let mut head = vec!["thickness_m".to_string()];
-            head.extend(SWEEP.iter().map(|(_, k, _)| k.to_string()));
+            head.extend(cols.iter().map(|(_, k, _)| k.to_string()));
             w.write_record(&head).map_err(ser)?;
             for ev in rows {
                 let mut cells = vec![format!("{:e}", ev.contact.thickness)];
-                for (_, _, get) in SWEEP {
+                for (_, _, get) in &cols {
                     cells.push(get(ev).map(|x| format!("{x:e}")).unwrap_or_default());
                 }
                 w.write_record(&cells).map_err(ser)?;

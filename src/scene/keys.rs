@@ -494,6 +494,21 @@ key_table! {
         alt: None,
         help: "Nominal pressure p0, e.g. \"0.1 MPa\"",
     },
+    Friction => Spec {
+        name: "load.friction",
+        flag: "--friction",
+        value: quantity(
+            Dim::Dimensionless,
+            Range::Plain {
+                lo: Bound::Inclusive(0.0),
+                hi: Bound::Inclusive(crate::check::MAX_FRICTION),
+                expected: "a friction coefficient 0 <= mu <= 10",
+            },
+        ),
+        alt: None,
+        help: "Sliding friction coefficient mu: the contact carries mu times its pressure along x \
+               (default 0: static contact, as in the paper)",
+    },
     Epsilon => Spec {
         name: "criteria.epsilon",
         flag: "--epsilon",
@@ -535,6 +550,14 @@ key_table! {
         value: Value::Text,
         alt: None,
         help: "The layer of a stack whose minimum thickness is sought, by name (default the top layer)",
+    },
+    ShearTail => Spec {
+        name: "criteria.shear_tail",
+        flag: "--shear-tail",
+        value: Value::Text,
+        alt: None,
+        help: "Peak interface shear rule: half-normal (the paper's, default without friction) or \
+               vector (|tau| of the shear vector; default and the only rule with friction)",
     },
     Rtol => Spec {
         name: "numerics.rtol",
@@ -862,6 +885,9 @@ mod tests {
         let sf = Key::SafetyFactor.range().unwrap();
         assert!(sf.reject(1.0).is_none() && sf.reject(1e300).is_none());
         assert!(sf.reject(0.999).is_some());
+        let mu = Key::Friction.range().unwrap();
+        assert!(mu.reject(0.0).is_none() && mu.reject(10.0).is_none());
+        assert!(mu.reject(-1e-300).is_some() && mu.reject(10.000001).is_some());
         let q = Key::Q0.range().unwrap();
         assert!(q.reject(Q_RANGE.0).is_none() && q.reject(Q_RANGE.1).is_none());
         assert!(q.reject(Q_RANGE.1 * 1.01).is_some());

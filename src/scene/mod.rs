@@ -18,10 +18,12 @@
 //! material = "epoxy"         # or shear_strength = "10 MPa"
 //! [load]
 //! pressure = "0.1 MPa"
+//! friction = 0               # optional: sliding friction coefficient (0 to 10)
 //! [criteria]                 # optional
 //! epsilon = 1e-6
 //! safety_factor = 1
 //! checks = ["bond-shear", "substrate-yield", "min-thickness"]
+//! shear_tail = "vector"      # or "half-normal" (the paper's; default without friction)
 //! [numerics]                 # optional
 //! rtol = 1e-8
 //! ```
@@ -93,6 +95,8 @@ pub struct Scene {
     pub thickness_of: usize,
     /// Nominal pressure p0 (Pa).
     pub pressure: f64,
+    /// Sliding friction coefficient μ (0: static contact).
+    pub friction: f64,
     pub criteria: Criteria,
     pub settings: Settings,
     /// The properties of named materials and bond the scene replaces.
@@ -150,6 +154,7 @@ impl Scene {
             pressure: self.pressure,
             yield_strength: self.substrate.yield_strength,
             bond_strength: self.bond.shear_strength,
+            friction: self.friction,
             criteria: self.criteria,
         }
     }

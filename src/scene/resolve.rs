@@ -6,7 +6,7 @@ use super::keys::{Choice, Key, RawScene};
 use super::layers::{resolve_layers, thickness_of};
 use super::roughness::resolve_roughness;
 use super::{Override, Scene};
-use crate::check::{CheckKind, Checks, Criteria};
+use crate::check::{CheckKind, Checks, Criteria, ShearTail};
 use crate::error::Error;
 use crate::layer::Elastic;
 use crate::material::{Bond, Kind, Library, Material};
@@ -95,7 +95,22 @@ pub fn resolve(
             "give the nominal pressure, e.g. --pressure \"0.1 MPa\"",
         )
     })?;
+    let friction = r.quantity(Key::Friction)?.unwrap_or(0.0);
     let criteria = resolve_criteria(r)?;
+    if friction > 0.0
+        && criteria.shear_tail == Some(ShearTail::HalfNormal)
+        && let Some(f) = r.field(Key::ShearTail)
+    {
+        return Err(r.error(
+            Key::ShearTail,
+            f,
+            format!(
+                "half-normal with {} = {friction} (expected vector: with friction the shear has \
+                 a mean, and the paper's half-normal rule does not apply)",
+                Key::Friction.name()
+            ),
+        ));
+    }
     if criteria.checks.substrate_yield && substrate.yield_strength.is_none() {
         return Err(ctx.missing(
             Key::YieldStrength.name(),
@@ -121,6 +136,7 @@ pub fn resolve(
         layers,
         thickness_of,
         pressure,
+        friction,
         criteria,
         settings,
         overrides,
@@ -414,6 +430,16 @@ fn resolve_criteria(r: Reader<'_>) -> Result<Criteria, Error> {
             checks.enable(c);
         }
         criteria.checks = checks;
+    }
+    if let Some(f) = r.field(Key::ShearTail) {
+        let name = r.ctx.text(f, Key::ShearTail.name())?;
+        criteria.shear_tail = Some(ShearTail::from_name(name).ok_or_else(|| {
+            r.error(
+                Key::ShearTail,
+                f,
+                format!("unknown rule '{name}' (expected half-normal or vector)"),
+            )
+        })?);
     }
     Ok(criteria)
 }

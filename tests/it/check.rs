@@ -35,7 +35,9 @@ pub(crate) fn paper_design(checks: Checks, bond: f64, yield_strength: f64) -> De
         pressure: 1e5,
         yield_strength: Some(yield_strength),
         bond_strength: bond,
+        friction: 0.0,
         criteria: Criteria {
+            shear_tail: None,
             epsilon: 1e-6,
             safety_factor: 1.0,
             checks,
@@ -43,7 +45,7 @@ pub(crate) fn paper_design(checks: Checks, bond: f64, yield_strength: f64) -> De
     }
 }
 
-fn checker(design: Design) -> Checker {
+pub(crate) fn checker(design: Design) -> Checker {
     Checker::new(&paper_spectrum(), design, Settings::default()).unwrap()
 }
 
@@ -118,7 +120,7 @@ fn brute_force(c: &Checker, per_decade: f64) -> (Option<(f64, f64)>, Samples) {
 
 /// d_min must lie in the brute-force bracket, and the full check must pass just above it
 /// and fail just below it.
-fn assert_d_min_matches_brute_force(c: &Checker, per_decade: f64) -> f64 {
+pub(crate) fn assert_d_min_matches_brute_force(c: &Checker, per_decade: f64) -> f64 {
     let m = c.min_thickness().unwrap();
     let d_min = m.thickness.unwrap();
     let (bracket, _) = brute_force(c, per_decade);

@@ -227,3 +227,43 @@ fn stack_bad_input() {
         assert!(err.contains(names), "{all:?}: {err}");
     }
 }
+
+/// The tangential columns for identical materials against the closed forms of notes.md
+/// ("Sliding friction"): g_t = (1 − x)e^{−x}, f_t = x e^{−x}, h = e^{−x}, to 1e-13 relative
+/// (g_t absolute in units of e^{−x} near its zero at x = 1), each error column equal to the
+/// stated bound.
+#[test]
+fn tangential_columns_match_identical_material_limits() {
+    let (code, out, _) = run(&[
+        "response",
+        "--film",
+        "1MPa,0.3",
+        "--substrate",
+        "1MPa,0.3",
+        "--qd",
+        "1e-6,0.1,1,3,30",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(code, 0);
+    let mut lines = out.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "qd,S,S_err,f,f_err,g,g_err,g_t,g_t_err,f_t,f_t_err,h,h_err"
+    );
+    let rtol = coatcheck::layer::tangential::TANGENTIAL_RTOL;
+    for l in lines {
+        let r: Vec<f64> = l.split(',').map(|v| v.parse().unwrap()).collect();
+        let x = r[0];
+        let e = (-x).exp();
+        for (col, want, scale) in [(7, (1.0 - x) * e, e), (9, x * e, x * e), (11, e, e)] {
+            assert!(
+                (r[col] - want).abs() <= 1e-13 * scale,
+                "x = {x}, col {col}: {r:?}"
+            );
+            assert!(
+                r[col + 1] >= rtol * r[col].abs() && r[col + 1] <= rtol * scale.max(r[col].abs())
+            );
+        }
+    }
+}

@@ -414,3 +414,29 @@ fn figure_files() {
         );
     }
 }
+
+/// The sliding figure (not in the paper): at μ = 0 the vector rule is the Rayleigh tail
+/// τ_rms √(ln 1/ε) of Fig. 7's τ_rms; the peaks rise with μ at every d; at d = 1 mm the
+/// fluctuation is screened and the peak is μ p0; the bond line is flat at 10 MPa.
+#[test]
+fn sliding_figure_limits() {
+    let f = figures::sliding(5).unwrap();
+    let tau = figures::fig07(5).unwrap();
+    let tau = &tau.series[2];
+    let k = (1e6f64).ln().sqrt();
+    for (i, &d) in f.series[0].x.iter().enumerate() {
+        let rayleigh = tau.y[i] * k;
+        assert!(
+            ((f.series[0].y[i] - rayleigh) / rayleigh).abs() < 1e-9,
+            "d = {d}: {} vs {rayleigh}",
+            f.series[0].y[i]
+        );
+        assert!(f.series[1].y[i] > f.series[0].y[i] && f.series[2].y[i] > f.series[1].y[i]);
+        assert_eq!(f.series[3].y[i], figures::BOND_SLIDING_FIG);
+    }
+    let last = f.series[0].x.len() - 1;
+    for (s, mu) in [(1, 0.5), (2, 1.0)] {
+        let want = mu * figures::P0;
+        assert!(((f.series[s].y[last] - want) / want).abs() < 1e-9);
+    }
+}

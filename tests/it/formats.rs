@@ -335,7 +335,13 @@ fn response_json_and_csv() {
         "response JSON",
     );
     let (head, rows) = parse_csv(&out(&args("csv")).stdout);
-    assert_eq!(head, ["qd", "S", "S_err", "f", "f_err", "g", "g_err"]);
+    assert_eq!(
+        head,
+        [
+            "qd", "S", "S_err", "f", "f_err", "g", "g_err", "g_t", "g_t_err", "f_t", "f_t_err",
+            "h", "h_err"
+        ]
+    );
     let list = j.as_array().unwrap();
     assert_eq!(rows.len(), list.len());
     for (row, point) in rows.iter().zip(list) {

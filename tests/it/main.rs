@@ -33,6 +33,7 @@ mod psd_moments;
 mod psd_read;
 mod report_browser;
 mod schema;
+mod sliding;
 mod stack;
 mod stack_scene;
 mod tail;

@@ -144,7 +144,10 @@ fn a_closed_pipe_ends_quietly() {
     let mut out = BufReader::new(child.stdout.take().unwrap());
     let mut line = String::new();
     out.read_line(&mut line).unwrap();
-    assert_eq!(line, "qd,S,S_err,f,f_err,g,g_err\n");
+    assert_eq!(
+        line,
+        "qd,S,S_err,f,f_err,g,g_err,g_t,g_t_err,f_t,f_t_err,h,h_err\n"
+    );
     drop(out);
     let o = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);

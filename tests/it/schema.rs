@@ -135,7 +135,8 @@ fn the_validator_accepts_and_rejects_what_it_should() {
 }
 
 /// `check --format json` of every kind of scene (model, measured PSD, failing, several
-/// roughness files, `--verify`, flags only, one check, layer stacks) against the shipped schema.
+/// roughness files, `--verify`, flags only, one check, layer stacks, sliding friction, the
+/// vector rule) against the shipped schema.
 #[test]
 fn check_json_follows_its_schema() {
     let schema: Value = serde_json::from_str(coatcheck::report::CHECK_SCHEMA).unwrap();
@@ -154,6 +155,18 @@ fn check_json_follows_its_schema() {
         &["check", "examples/specs/paper-film-too-thin.toml"],
         &["check", "examples/rubber-epoxy-primer-steel.toml"],
         &["check", "examples/ptfe-rubber-steel.toml"],
+        &[
+            "check",
+            "examples/paper-rubber-on-steel.toml",
+            "--friction",
+            "0.5",
+        ],
+        &[
+            "check",
+            "examples/height-map-film.toml",
+            "--shear-tail",
+            "vector",
+        ],
     ] {
         let mut argv = args.to_vec();
         argv.extend(["--format", "json"]);

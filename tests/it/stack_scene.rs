@@ -319,6 +319,7 @@ fn split_layer_min_thickness() {
         pressure: 1e5,
         yield_strength: Some(2.5e8),
         bond_strength: 1e6,
+        friction: 0.0,
         criteria,
     };
     let film = Checker::new(&spectrum, design, Settings::default()).unwrap();

@@ -138,3 +138,18 @@ fn bad_input_is_named() {
     let fixed = ShearVector::new(3.0, 0.0, 0.0).unwrap();
     assert_eq!(fixed.peak(1e-6).unwrap().value, 3.0);
 }
+
+/// Far beyond the mean, P(|τ| > level) is 0 at once where its Gaussian bound underflows
+/// (levels of 1e5 rms and more, as a bond strength against a thick film's shear), and just
+/// inside that gap still the Rayleigh value e^{−R²/(2s²)} (subnormal-free, 1e-12 relative).
+#[test]
+fn exceedance_far_beyond_the_mean_underflows_to_zero() {
+    let v = ShearVector::new(0.0, 1.0, 1.0).unwrap();
+    let at = v.exceedance(38.0);
+    assert!(rel(at.value, (-722.0f64).exp()) < 1e-12, "{at:?}");
+    for level in [38.7, 1e3, 2.8e5, 1e12] {
+        assert_eq!(v.exceedance(level).value, 0.0);
+    }
+    let far = ShearVector::new(2000.0, 36.0, 35.9).unwrap();
+    assert_eq!(far.exceedance(10e6).value, 0.0);
+}

@@ -64,7 +64,9 @@ fn warnings(xi: f64, p0: f64, d: f64) -> Vec<String> {
         pressure: p0,
         yield_strength: Some(250e6),
         bond_strength: 10e6,
+        friction: 0.0,
         criteria: Criteria {
+            shear_tail: None,
             epsilon: 1e-6,
             safety_factor: 1.0,
             checks: Checks {

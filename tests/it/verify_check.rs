@@ -42,7 +42,9 @@ fn design(layers: Bilayer, p0: f64, bond: f64, yield_strength: f64) -> Design {
         pressure: p0,
         yield_strength: Some(yield_strength),
         bond_strength: bond,
+        friction: 0.0,
         criteria: Criteria {
+            shear_tail: None,
             epsilon: 1e-6,
             safety_factor: 1.0,
             checks: Checks::all(),
