@@ -437,6 +437,11 @@ impl Checker {
         w
     }
 
+    /// The h_rms (m) and rms slope of the spectrum the design is judged with.
+    pub fn roughness(&self) -> (f64, f64) {
+        (self.h_rms, self.rms_slope)
+    }
+
     /// Evaluations at many thicknesses, in parallel; each equal to [`evaluate`](Self::evaluate)
     /// at its thickness afterwards, to the last bit (one kernel table serves them all).
     pub fn sweep(&self, thicknesses: &[f64]) -> Result<Vec<Evaluation>, Error> {

@@ -114,7 +114,7 @@ fn run_sweep(
     if let Some(path) = &args.parquet {
         report::parquet::write_sweep(path, &rows)?;
     }
-    report::sweep(&rows, Format::from(args.format))
+    report::sweep(&rows, checker.roughness(), Format::from(args.format))
 }
 
 /// The report to `--output` or standard output.

@@ -56,8 +56,13 @@ fn friction(rows: &[Evaluation]) -> Option<f64> {
         .filter(|&mu| mu > 0.0)
 }
 
-/// The thickness sweep in the chosen format.
-pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
+/// The thickness sweep in the chosen format, with the h_rms (m) and rms slope of the spectrum
+/// used (`roughness`; in the table's caption and the JSON's top level).
+pub fn sweep(
+    rows: &[Evaluation],
+    (h_rms, rms_slope): (f64, f64),
+    format: Format,
+) -> Result<String, Error> {
     let mu = friction(rows);
     let extra: &[(&str, &str, Getter)] = if mu.is_some() { SLIDING } else { &[] };
     let cols: Vec<&(&str, &str, Getter)> = SWEEP.iter().chain(extra).collect();
@@ -99,10 +104,12 @@ pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
                 });
                 t.add_row(cells);
             }
-            let mut caption =
-                "d in µm, stresses in MPa; fails: the checks failing at that thickness \
-                 (bond: bond-shear, yield: substrate-yield)"
-                    .to_string();
+            let mut caption = format!(
+                "spectrum used: h_rms = {} µm, rms slope = {}. d in µm, stresses in MPa; fails: \
+                 the checks failing at that thickness (bond: bond-shear, yield: substrate-yield)",
+                um(h_rms),
+                sig(rms_slope, 4)
+            );
             if let Some(mu) = mu {
                 caption += &format!(
                     "; sliding with friction mu = {mu}: τ_peak int is |tau| of the shear vector \
@@ -114,7 +121,7 @@ pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
         }
         Format::Json => {
             // JSON shows NaN as null: the CSV of the same numbers is checked instead.
-            super::finite_only(&sweep(rows, Format::Csv)?)?;
+            super::finite_only(&sweep(rows, (h_rms, rms_slope), Format::Csv)?)?;
             let list: Vec<Value> = rows
                 .iter()
                 .map(|ev| {
@@ -137,6 +144,8 @@ pub fn sweep(rows: &[Evaluation], format: Format) -> Result<String, Error> {
                 json!({
                     "schema_version": super::SCHEMA_VERSION,
                     "coatcheck_version": env!("CARGO_PKG_VERSION"),
+                    "h_rms_m": h_rms,
+                    "rms_slope": rms_slope,
                     "sweep": list,
                 })
             ))

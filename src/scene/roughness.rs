@@ -274,6 +274,7 @@ pub(super) fn resolve_roughness(r: Reader<'_>) -> Result<Roughness, Error> {
             _ => RoughnessSource::Profile { path: first },
         }
     } else if let Some(f) = r.field(Key::Model) {
+        refuse_reading_keys(r)?;
         resolve_model(r, f, scale.is_some())?
     } else {
         return Err(r.ctx.missing(
@@ -443,6 +444,45 @@ fn resolve_psd_format(r: Reader<'_>) -> Result<PsdFormat, Error> {
         series: text(Key::Series)?,
         conversion: resolve_conversion(r)?,
     })
+}
+
+/// The keys that say how to read a measured file (its columns, units, convention, grid and
+/// processing): an error naming the first one given with a model, which has no file to read.
+fn refuse_reading_keys(r: Reader<'_>) -> Result<(), Error> {
+    const READING: [Key; 20] = [
+        Key::QCol,
+        Key::CCol,
+        Key::QUnit,
+        Key::CUnit,
+        Key::PsdKind,
+        Key::PsdConvention,
+        Key::Series,
+        Key::Conversion,
+        Key::Channel,
+        Key::HeightKind,
+        Key::Dx,
+        Key::PixelSize,
+        Key::PixelSizeY,
+        Key::ZUnit,
+        Key::XUnit,
+        Key::Periodic,
+        Key::Window,
+        Key::Detrend,
+        Key::PointsPerDecade,
+        Key::CutoffPixels,
+    ];
+    match READING.iter().find_map(|&k| r.field(k).map(|f| (k, f))) {
+        Some((key, f)) => Err(r.error(
+            key,
+            f,
+            format!(
+                "reads a measured file ({} or {}); this scene's roughness is a model",
+                Key::Psd.name(),
+                Key::Profile.name()
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 #[cfg(test)]

@@ -236,6 +236,31 @@ fn check_sweep_json_and_csv() {
             same(cell, &point[h], h);
         }
     }
+    // The spectrum used is the check's: the same h_rms and rms slope, bit for bit.
+    let check = json(&out(&[
+        "check",
+        "examples/paper-rubber-on-steel.toml",
+        "--format",
+        "json",
+    ]));
+    for key in ["h_rms_m", "rms_slope"] {
+        assert_eq!(j[key], check[key], "{key}");
+    }
+    let table = String::from_utf8(out(&base[..4]).stdout).unwrap();
+    assert!(
+        table.starts_with("spectrum used: h_rms = 2.690 µm, rms slope = 1.000."),
+        "{table}"
+    );
+    // Under sliding the sliding columns follow, in the schema too.
+    let mut sliding = with("json");
+    sliding.extend(["--friction", "0.5"]);
+    let j = json(&out(&sliding));
+    valid(
+        &schema(coatcheck::report::SWEEP_SCHEMA),
+        &j,
+        "sliding sweep JSON",
+    );
+    assert!(j["sweep"][0]["tau_peak_static_pa"].as_f64().unwrap() > 0.0);
 }
 
 /// `verify`: JSON by its schema (no CSV: the fields go to `--fields FILE`).

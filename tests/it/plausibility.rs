@@ -346,3 +346,58 @@ fn psd_summary_h_rms_is_the_rms_after_the_named_detrend() {
     }
     assert!(rms_mean > 1.2 * a / 2.0, "the plane matters: {rms_mean:e}");
 }
+
+/// A key that says how to read a measured file, given with a model roughness (which reads no
+/// file), is an error naming the key, exit 2: in the scene file (each reading key is written
+/// into the paper scene's `[roughness]`) and as a flag without an alternative (`--conversion`;
+/// a heights or PSD-file flag instead replaces the file's model, so the scene then lacks its
+/// file); with a measured file the same key is taken.
+#[test]
+fn reading_keys_with_a_model_are_an_error() {
+    let base = std::fs::read_to_string("examples/paper-rubber-on-steel.toml").unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    for line in [
+        "window = \"hann\"",
+        "q_unit = \"1/um\"",
+        "conversion = \"pi-q-shortcut\"",
+    ] {
+        let key = line.split(' ').next().unwrap();
+        let text = base.replacen("[roughness]\n", &format!("[roughness]\n{line}\n"), 1);
+        assert_ne!(text, base);
+        let scene = dir.path().join(format!("{key}.toml"));
+        std::fs::write(&scene, text).unwrap();
+        let o = run(&["check", scene.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{key}: {err}");
+        // Keys that belong to a measured source are a contradiction with the model; the others
+        // (conversion) are refused as reading a file.
+        assert!(
+            err.contains(&format!("roughness.{key}"))
+                && (err.contains("is a model")
+                    || err.contains("contradicts roughness.model")
+                    || err.contains("roughness.model: contradicts")),
+            "{key}: {err}"
+        );
+    }
+    let o = run(&[
+        "check",
+        "examples/paper-rubber-on-steel.toml",
+        "--conversion",
+        "pi-q-shortcut",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--conversion") && err.contains("is a model"),
+        "{err}"
+    );
+    let o = run(&[
+        "check",
+        "examples/paper-rubber-on-steel.toml",
+        "--profile",
+        "examples/data/height-map.csv",
+        "--window",
+        "hann",
+    ]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{o:?}");
+}
