@@ -30,45 +30,14 @@ pub struct Checker {
 
 impl Checker {
     pub fn new(spectrum: &Spectrum, design: Design, settings: Settings) -> Result<Self, Error> {
-        let c = &design.criteria;
-        if !(c.epsilon.is_finite() && c.epsilon > 0.0 && c.epsilon < 1.0) {
-            return Err(Error::invalid("epsilon", c.epsilon, "0 < epsilon < 1"));
-        }
-        if !(c.safety_factor.is_finite() && c.safety_factor > 0.0) {
-            return Err(Error::invalid(
-                "safety factor",
-                c.safety_factor,
-                "a finite factor > 0",
-            ));
-        }
-        if !(design.pressure.is_finite() && design.pressure > 0.0) {
-            return Err(Error::invalid(
-                "pressure",
-                design.pressure,
-                "a finite nominal pressure > 0 in Pa",
-            ));
-        }
-        if !(design.bond_strength.is_finite() && design.bond_strength > 0.0) {
-            return Err(Error::invalid(
-                "bond shear strength",
-                design.bond_strength,
-                "a finite strength > 0 in Pa",
-            ));
-        }
-        if c.checks.substrate_yield && design.yield_strength.is_none() {
-            return Err(Error::invalid(
-                "substrate",
-                "no yield strength",
-                "a substrate yield_strength for the substrate-yield check",
-            ));
-        }
+        validate(
+            &design.criteria,
+            design.pressure,
+            &[design.bond_strength],
+            design.yield_strength,
+        )?;
         let (q_low, q_high) = spectrum.support();
-        let engine = Engine::new(spectrum, settings);
-        // The search engine shares the design engine's grids where they coincide, and its
-        // kernel tables.
-        let search = engine.sibling(Settings {
-            rtol: settings.rtol.max(crate::prec::SEARCH_RTOL),
-        });
+        let (engine, search) = engines(spectrum, settings);
         Ok(Self {
             engine,
             search,
@@ -478,4 +447,60 @@ pub(crate) fn data_warnings(what: &str, thickness: f64, h_rms: f64, q_low: f64) 
         ));
     }
     w
+}
+
+/// The checks' inputs a design must have, whatever its layers: 0 < ε < 1, a safety factor > 0,
+/// a nominal pressure > 0, every bond strength > 0 (Pa), and a yield strength when the
+/// substrate-yield check runs.
+pub(crate) fn validate(
+    c: &Criteria,
+    pressure: f64,
+    bond_strengths: &[f64],
+    yield_strength: Option<f64>,
+) -> Result<(), Error> {
+    if !(c.epsilon.is_finite() && c.epsilon > 0.0 && c.epsilon < 1.0) {
+        return Err(Error::invalid("epsilon", c.epsilon, "0 < epsilon < 1"));
+    }
+    if !(c.safety_factor.is_finite() && c.safety_factor > 0.0) {
+        return Err(Error::invalid(
+            "safety factor",
+            c.safety_factor,
+            "a finite factor > 0",
+        ));
+    }
+    if !(pressure.is_finite() && pressure > 0.0) {
+        return Err(Error::invalid(
+            "pressure",
+            pressure,
+            "a finite nominal pressure > 0 in Pa",
+        ));
+    }
+    if let Some(&b) = bond_strengths
+        .iter()
+        .find(|b| !(b.is_finite() && **b > 0.0))
+    {
+        return Err(Error::invalid(
+            "bond shear strength",
+            b,
+            "a finite strength > 0 in Pa",
+        ));
+    }
+    if c.checks.substrate_yield && yield_strength.is_none() {
+        return Err(Error::invalid(
+            "substrate",
+            "no yield strength",
+            "a substrate yield_strength for the substrate-yield check",
+        ));
+    }
+    Ok(())
+}
+
+/// The design engine and the search engine (at least [`crate::prec::SEARCH_RTOL`]), which
+/// shares the design engine's grids where they coincide, and its kernel tables.
+pub(crate) fn engines(spectrum: &Spectrum, settings: Settings) -> (Engine, Engine) {
+    let engine = Engine::new(spectrum, settings);
+    let search = engine.sibling(Settings {
+        rtol: settings.rtol.max(crate::prec::SEARCH_RTOL),
+    });
+    (engine, search)
 }

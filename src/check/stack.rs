@@ -119,35 +119,13 @@ impl StackChecker {
         design: StackDesign,
         settings: Settings,
     ) -> Result<Self, Error> {
-        let c = &design.criteria;
-        if !(c.epsilon.is_finite() && c.epsilon > 0.0 && c.epsilon < 1.0) {
-            return Err(Error::invalid("epsilon", c.epsilon, "0 < epsilon < 1"));
-        }
-        if !(c.safety_factor.is_finite() && c.safety_factor > 0.0) {
-            return Err(Error::invalid(
-                "safety factor",
-                c.safety_factor,
-                "a finite factor > 0",
-            ));
-        }
-        if !(design.pressure.is_finite() && design.pressure > 0.0) {
-            return Err(Error::invalid(
-                "pressure",
-                design.pressure,
-                "a finite nominal pressure > 0 in Pa",
-            ));
-        }
-        if let Some(l) = design
-            .layers
-            .iter()
-            .find(|l| !(l.bond_strength.is_finite() && l.bond_strength > 0.0))
-        {
-            return Err(Error::invalid(
-                "bond shear strength",
-                l.bond_strength,
-                "a finite strength > 0 in Pa",
-            ));
-        }
+        let bonds: Vec<f64> = design.layers.iter().map(|l| l.bond_strength).collect();
+        super::checker::validate(
+            &design.criteria,
+            design.pressure,
+            &bonds,
+            design.yield_strength,
+        )?;
         if design.thickness_of >= design.layers.len() {
             return Err(Error::invalid(
                 "thickness_of",
@@ -155,18 +133,8 @@ impl StackChecker {
                 "a layer of the stack",
             ));
         }
-        if design.criteria.checks.substrate_yield && design.yield_strength.is_none() {
-            return Err(Error::invalid(
-                "substrate",
-                "no yield strength",
-                "a substrate yield_strength for the substrate-yield check",
-            ));
-        }
         let (q_low, q_high) = spectrum.support();
-        let engine = Engine::new(spectrum, settings);
-        let search = engine.sibling(Settings {
-            rtol: settings.rtol.max(crate::prec::SEARCH_RTOL),
-        });
+        let (engine, search) = super::checker::engines(spectrum, settings);
         Ok(Self {
             engine,
             search,
