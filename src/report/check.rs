@@ -454,9 +454,22 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
     })
 }
 
-fn put(m: &mut Map<String, Value>, key: &str, e: Option<Estimate>) {
+/// `key` and `key_err`: an estimate's value and error (null when absent).
+pub(crate) fn put(m: &mut Map<String, Value>, key: &str, e: Option<Estimate>) {
     m.insert(key.into(), json!(e.map(|e| e.value)));
     m.insert(format!("{key}_err"), json!(e.map(|e| e.err)));
+}
+
+/// `min_thickness_m` (with `_err`) and `min_thickness_governing_check`.
+pub(crate) fn put_min_thickness(
+    m: &mut Map<String, Value>,
+    min: Option<&crate::check::MinThickness>,
+) {
+    put(m, "min_thickness_m", min.and_then(|mt| mt.thickness));
+    m.insert(
+        "min_thickness_governing_check".into(),
+        json!(min.and_then(|mt| mt.governing).map(CheckKind::name)),
+    );
 }
 
 /// The JSON object (see the module docs for the keys).
@@ -495,15 +508,7 @@ pub fn json(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> Value {
     }
     m.insert("bond_exceedance".into(), json!(ev.bond_exceedance));
     m.insert("yield_exceedance".into(), json!(ev.yield_exceedance));
-    let (dmin, dmin_gov) = match &outcome.min_thickness {
-        Some(mt) => (mt.thickness, mt.governing),
-        None => (None, None),
-    };
-    put(&mut m, "min_thickness_m", dmin);
-    m.insert(
-        "min_thickness_governing_check".into(),
-        json!(dmin_gov.map(CheckKind::name)),
-    );
+    put_min_thickness(&mut m, outcome.min_thickness.as_ref());
     m.insert(
         "governing_check".into(),
         json!(outcome.governing.map(CheckKind::name)),

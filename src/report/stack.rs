@@ -10,18 +10,13 @@
 //! `bond_exceedance`; each check names where it applies (`at`: a layer, or `substrate`); the
 //! scene echo lists the layers (`scene.layers`) and `thickness_of`.
 
-use super::check::check_cells;
+use super::check::{check_cells, put, put_min_thickness};
 use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
 use crate::check::CheckKind;
 use crate::check::stack::{StackCheck, StackOutcome};
 use crate::prec::Estimate;
 use crate::scene::Scene;
 use serde_json::{Map, Value, json};
-
-fn put(m: &mut Map<String, Value>, key: &str, e: Option<Estimate>) {
-    m.insert(key.into(), json!(e.map(|e| e.value)));
-    m.insert(format!("{key}_err"), json!(e.map(|e| e.err)));
-}
 
 /// The JSON object (module docs).
 pub fn json(scene: &Scene, o: &StackOutcome) -> Value {
@@ -52,15 +47,7 @@ pub fn json(scene: &Scene, o: &StackOutcome) -> Value {
     put(&mut m, "tau_peak_pa", Some(bottom.tau_peak));
     put(&mut m, "sigma_peak_interface_pa", Some(bottom.sigma_peak));
     put(&mut m, "e_eff_over_e_film", c.e_eff_over_e_film);
-    let (dmin, dmin_gov) = match &o.min_thickness {
-        Some(mt) => (mt.thickness, mt.governing),
-        None => (None, None),
-    };
-    put(&mut m, "min_thickness_m", dmin);
-    m.insert(
-        "min_thickness_governing_check".into(),
-        json!(dmin_gov.map(CheckKind::name)),
-    );
+    put_min_thickness(&mut m, o.min_thickness.as_ref());
     m.insert(
         "governing_check".into(),
         json!(governing(o).map(|c| c.result.kind.name())),
