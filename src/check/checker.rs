@@ -226,29 +226,12 @@ impl Checker {
         let req = self.design.criteria.checks.request();
         let (contact, sliding) = self.contact(&self.search, thickness, req)?;
         let ev = self.assess(contact, sliding, false)?;
-        let mut worst = Utilisation {
-            value: 0.0,
-            rel_err: 0.0,
-            kind: None,
-        };
-        for c in &ev.checks {
-            let u = c.value.value / c.limit.unwrap_or(f64::INFINITY);
-            if u > worst.value || worst.kind.is_none() {
-                worst = Utilisation {
-                    value: u,
-                    rel_err: c.value.err / c.value.value.abs(),
-                    kind: Some(c.kind),
-                };
-            }
-        }
-        Ok(worst)
+        Ok(worst_utilisation(&ev.checks))
     }
 
     /// The scan range [d_lo, d_hi] of the minimum-thickness search (module docs).
     pub fn scan_range(&self) -> (f64, f64) {
-        let lo = (1e-6 / self.q_low).min(1e-4 / self.q_high).max(THINNEST);
-        let hi = BULK_QD / self.q_low;
-        (lo.min(hi), hi)
+        scan_range(self.q_low, self.q_high)
     }
 
     /// The smallest thickness above which every enabled stress check passes (module docs).
@@ -503,4 +486,35 @@ pub(crate) fn engines(spectrum: &Spectrum, settings: Settings) -> (Engine, Engin
         rtol: settings.rtol.max(crate::prec::SEARCH_RTOL),
     });
     (engine, search)
+}
+
+/// The largest value/limit among `checks` (a check with no limit counts 0), with its relative
+/// error and its kind: what the minimum-thickness search drives below 1.
+pub(crate) fn worst_utilisation<'a>(
+    checks: impl IntoIterator<Item = &'a CheckResult>,
+) -> Utilisation {
+    let mut worst = Utilisation {
+        value: 0.0,
+        rel_err: 0.0,
+        kind: None,
+    };
+    for c in checks {
+        let u = c.value.value / c.limit.unwrap_or(f64::INFINITY);
+        if u > worst.value || worst.kind.is_none() {
+            worst = Utilisation {
+                value: u,
+                rel_err: c.value.err / c.value.value.abs(),
+                kind: Some(c.kind),
+            };
+        }
+    }
+    worst
+}
+
+/// The scan range [d_lo, d_hi] of the minimum-thickness search for a spectrum on [q_low,
+/// q_high] (module docs).
+pub(crate) fn scan_range(q_low: f64, q_high: f64) -> (f64, f64) {
+    let lo = (1e-6 / q_low).min(1e-4 / q_high).max(THINNEST);
+    let hi = BULK_QD / q_low;
+    (lo.min(hi), hi)
 }

@@ -22,8 +22,8 @@
 
 use super::criteria::{limit, upper_check, yield_governing};
 use super::{
-    BULK_QD, CheckKind, CheckResult, Criteria, FULL_CONTACT_WARN, LOW_OCTAVE_WARN, MinThickness,
-    SLOPE_WARN, THINNEST, Utilisation, search_min_thickness,
+    CheckKind, CheckResult, Criteria, FULL_CONTACT_WARN, LOW_OCTAVE_WARN, MinThickness, SLOPE_WARN,
+    Utilisation, search_min_thickness,
 };
 use crate::contact::{self, Contact, Engine, NormalStress, Request, StackContact};
 use crate::error::Error;
@@ -251,29 +251,14 @@ impl StackChecker {
             self.search
                 .evaluate_stack(&self.stack(d)?, self.design.pressure, self.request())?;
         let (_, _, checks) = self.assess(&c)?;
-        let mut worst = Utilisation {
-            value: 0.0,
-            rel_err: 0.0,
-            kind: None,
-        };
-        for c in checks.iter().map(|c| &c.result) {
-            let u = c.value.value / c.limit.unwrap_or(f64::INFINITY);
-            if u > worst.value || worst.kind.is_none() {
-                worst = Utilisation {
-                    value: u,
-                    rel_err: c.value.err / c.value.value.abs(),
-                    kind: Some(c.kind),
-                };
-            }
-        }
-        Ok(worst)
+        Ok(super::checker::worst_utilisation(
+            checks.iter().map(|c| &c.result),
+        ))
     }
 
     /// The scan range of the minimum-thickness search for the varied layer (as for a film).
     pub fn scan_range(&self) -> (f64, f64) {
-        let lo = (1e-6 / self.q_low).min(1e-4 / self.q_high).max(THINNEST);
-        let hi = BULK_QD / self.q_low;
-        (lo.min(hi), hi)
+        super::checker::scan_range(self.q_low, self.q_high)
     }
 
     /// The smallest thickness of the layer `thickness_of` above which every enabled stress
