@@ -267,14 +267,22 @@ where
         let style = ("sans-serif", 13).into_font().color(&BLACK);
         let (anchor, offset, pos) = if m.vertical {
             verticals += 1;
-            if verticals % 2 == 1 {
-                ((line[0].0, y_hi), (4, 4), Pos::new(HPos::Left, VPos::Top))
+            // A line in the right quarter of the plot is labelled on its left, so that the
+            // label stays inside the plot.
+            let frac = if fig.x.log {
+                (line[0].0 / x_lo).ln() / (x_hi / x_lo).ln()
             } else {
-                (
-                    (line[0].0, y_lo),
-                    (4, -4),
-                    Pos::new(HPos::Left, VPos::Bottom),
-                )
+                (line[0].0 - x_lo) / (x_hi - x_lo)
+            };
+            let (dx, h) = if frac > 0.75 {
+                (-4, HPos::Right)
+            } else {
+                (4, HPos::Left)
+            };
+            if verticals % 2 == 1 {
+                ((line[0].0, y_hi), (dx, 4), Pos::new(h, VPos::Top))
+            } else {
+                ((line[0].0, y_lo), (dx, -4), Pos::new(h, VPos::Bottom))
             }
         } else {
             (
