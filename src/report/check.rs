@@ -460,6 +460,25 @@ pub(crate) fn put(m: &mut Map<String, Value>, key: &str, e: Option<Estimate>) {
     m.insert(format!("{key}_err"), json!(e.map(|e| e.err)));
 }
 
+/// One check as JSON: name, value (with `_err`) and its unit, limit, utilisation, margin, pass.
+pub(crate) fn check_json(ch: &CheckResult) -> Map<String, Value> {
+    let unit = if ch.kind == CheckKind::MinThickness {
+        "m"
+    } else {
+        "Pa"
+    };
+    let mut m = Map::new();
+    m.insert("name".into(), json!(ch.kind.name()));
+    m.insert("value".into(), json!(ch.value.value));
+    m.insert("value_err".into(), json!(ch.value.err));
+    m.insert("unit".into(), json!(unit));
+    m.insert("limit".into(), json!(ch.limit));
+    m.insert("utilisation".into(), json!(ch.margin.map(|m| 1.0 - m)));
+    m.insert("margin".into(), json!(ch.margin));
+    m.insert("pass".into(), json!(ch.pass));
+    m
+}
+
 /// `min_thickness_m` (with `_err`) and `min_thickness_governing_check`.
 pub(crate) fn put_min_thickness(
     m: &mut Map<String, Value>,
@@ -516,18 +535,7 @@ pub fn json(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> Value {
     let checks: Vec<Value> = outcome
         .checks
         .iter()
-        .map(|ch| {
-            json!({
-                "name": ch.kind.name(),
-                "value": ch.value.value,
-                "value_err": ch.value.err,
-                "unit": if ch.kind == CheckKind::MinThickness { "m" } else { "Pa" },
-                "limit": ch.limit,
-                "utilisation": ch.margin.map(|m| 1.0 - m),
-                "margin": ch.margin,
-                "pass": ch.pass,
-            })
-        })
+        .map(|ch| Value::Object(check_json(ch)))
         .collect();
     m.insert("checks".into(), Value::Array(checks));
     m.insert("levers".into(), json!(levers));

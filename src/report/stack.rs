@@ -10,9 +10,8 @@
 //! `bond_exceedance`; each check names where it applies (`at`: a layer, or `substrate`); the
 //! scene echo lists the layers (`scene.layers`) and `thickness_of`.
 
-use super::check::{check_cells, put, put_min_thickness};
+use super::check::{check_cells, check_json, put, put_min_thickness};
 use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
-use crate::check::CheckKind;
 use crate::check::stack::{StackCheck, StackOutcome};
 use crate::prec::Estimate;
 use crate::scene::Scene;
@@ -73,18 +72,9 @@ pub fn json(scene: &Scene, o: &StackOutcome) -> Value {
         .checks
         .iter()
         .map(|c| {
-            let ch = &c.result;
-            json!({
-                "name": ch.kind.name(),
-                "at": c.at,
-                "value": ch.value.value,
-                "value_err": ch.value.err,
-                "unit": if ch.kind == CheckKind::MinThickness { "m" } else { "Pa" },
-                "limit": ch.limit,
-                "utilisation": ch.margin.map(|m| 1.0 - m),
-                "margin": ch.margin,
-                "pass": ch.pass,
-            })
+            let mut m = check_json(&c.result);
+            m.insert("at".into(), json!(c.at));
+            Value::Object(m)
         })
         .collect();
     m.insert("checks".into(), Value::Array(checks));
