@@ -9,7 +9,7 @@
 
 use crate::error::Error;
 use crate::material::Library;
-use crate::pipeline::{Judged, governing_margin, judge};
+use crate::pipeline::{Judged, judge};
 use crate::scene::Scene;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -73,7 +73,7 @@ impl SceneRun {
     fn order(&self) -> (u8, f64) {
         match &self.result {
             Ok(j) => {
-                let m = governing_margin(&j.outcome).unwrap_or(f64::NEG_INFINITY);
+                let m = j.outcome.margin().unwrap_or(f64::NEG_INFINITY);
                 (if j.pass() { 2 } else { 0 }, m)
             }
             Err(_) => (1, 0.0),

@@ -1,6 +1,7 @@
 //! From a scene to its verdict, the one road every `check` takes (one scene, a batch,
-//! `--verify`): the spectrum of each roughness file, a [`Checker`] on it, the outcome at the
-//! scene's thickness, optionally the exact check on the height map ([`crate::verify`]), and the
+//! `--verify`, a film or a layer stack): the spectrum of each roughness file, a [`Checker`]
+//! (a film) or a [`StackChecker`] (`[[layer]]` tables) on it, the outcome at the scene's
+//! thickness, optionally the exact check on the height map ([`crate::verify`], films), and the
 //! worst file when the scene lists several. No physics of its own (paper App. B, eqs. B8–B12
 //! through [`crate::check`]).
 //!
@@ -9,7 +10,9 @@
 
 use crate::bem::{BemSettings, Surface};
 use crate::check::levers::{Lever, levers};
-use crate::check::{CheckKind, Checker, Outcome};
+use crate::check::stack::{StackChecker, StackOutcome};
+use crate::check::stack_levers::stack_levers;
+use crate::check::{CheckKind, CheckResult, Checker, MinThickness, Outcome};
 use crate::error::Error;
 use crate::scene::{RoughnessSource, Scene};
 use crate::topography::io::{HeightKind, MapOptions, read_height_map, sniff};
@@ -36,12 +39,94 @@ pub struct Exact {
     pub verification: Verification,
 }
 
+/// The outcome of a film or of a layer stack.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Verdict {
+    Film(Outcome),
+    Stack(StackOutcome),
+}
+
+impl Verdict {
+    pub fn pass(&self) -> bool {
+        match self {
+            Verdict::Film(o) => o.pass,
+            Verdict::Stack(o) => o.pass,
+        }
+    }
+
+    /// The check that decides the verdict.
+    pub fn governing(&self) -> Option<CheckKind> {
+        match self {
+            Verdict::Film(o) => o.governing,
+            Verdict::Stack(o) => o.governing().map(|c| c.result.kind),
+        }
+    }
+
+    /// The margin of the governing check (`None` when it has no limit).
+    pub fn margin(&self) -> Option<f64> {
+        match self {
+            Verdict::Film(o) => governing_margin(o),
+            Verdict::Stack(o) => o.governing().and_then(|c| c.result.margin),
+        }
+    }
+
+    pub fn min_thickness(&self) -> Option<&MinThickness> {
+        match self {
+            Verdict::Film(o) => o.min_thickness.as_ref(),
+            Verdict::Stack(o) => o.min_thickness.as_ref(),
+        }
+    }
+
+    /// The warnings of the outcome (the checks', the theory's, the data's).
+    pub fn warnings_mut(&mut self) -> &mut Vec<String> {
+        match self {
+            Verdict::Film(o) => &mut o.warnings,
+            Verdict::Stack(o) => &mut o.warnings,
+        }
+    }
+
+    /// The governing check's name; in a stack, with where it applies ("bond-shear at primer").
+    pub fn governing_name(&self) -> Option<String> {
+        match self {
+            Verdict::Film(o) => o.governing.map(|k| k.name().to_string()),
+            Verdict::Stack(o) => o
+                .governing()
+                .map(|c| format!("{} at {}", c.result.kind.name(), c.at)),
+        }
+    }
+
+    /// Every check with where it applies (`None` for a film's).
+    pub fn checks(&self) -> Vec<(Option<&str>, &CheckResult)> {
+        match self {
+            Verdict::Film(o) => o.checks.iter().map(|c| (None, c)).collect(),
+            Verdict::Stack(o) => o
+                .checks
+                .iter()
+                .map(|c| (Some(c.at.as_str()), &c.result))
+                .collect(),
+        }
+    }
+
+    /// The film's outcome (`None` for a stack).
+    pub fn film(&self) -> Option<&Outcome> {
+        match self {
+            Verdict::Film(o) => Some(o),
+            Verdict::Stack(_) => None,
+        }
+    }
+
+    /// Sort key: failing before passing, then the smaller margin (none = worst).
+    fn severity(&self) -> (bool, f64) {
+        (self.pass(), self.margin().unwrap_or(f64::NEG_INFINITY))
+    }
+}
+
 /// A judged scene: the outcome of its worst roughness file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Judged {
     /// The scene, with the roughness of the worst file.
     pub scene: Scene,
-    pub outcome: Outcome,
+    pub outcome: Verdict,
     /// Every file's verdict, in the scene's order, when the scene lists several.
     pub files: Vec<FileVerdict>,
     /// The readers' warnings, every file's.
@@ -66,7 +151,7 @@ impl Judged {
 
     /// Persson's checks pass, and the exact ones when they were made.
     pub fn pass(&self) -> bool {
-        self.outcome.pass && self.exact.as_ref().is_none_or(|e| e.verification.pass)
+        self.outcome.pass() && self.exact.as_ref().is_none_or(|e| e.verification.pass)
     }
 }
 
@@ -77,14 +162,6 @@ pub fn governing_margin(outcome: &Outcome) -> Option<f64> {
         .iter()
         .find(|c| Some(c.kind) == outcome.governing)
         .and_then(|c| c.margin)
-}
-
-/// Sort key of a verdict: failing before passing, then the smaller margin (none = worst).
-fn severity(outcome: &Outcome) -> (bool, f64) {
-    (
-        outcome.pass,
-        governing_margin(outcome).unwrap_or(f64::NEG_INFINITY),
-    )
 }
 
 fn origin(scene: &Scene) -> String {
@@ -99,8 +176,7 @@ pub fn checker(scene: &Scene) -> Result<(Checker, Vec<String>), Error> {
     if scene.is_stack() {
         return Err(Error::Value {
             origin: origin(scene),
-            msg: "a layer stack ([[layer]] tables) is checked on its own: coatcheck check SCENE \
-                  (not in a batch, a sweep or the HTML report)"
+            msg: "a layer stack ([[layer]] tables) has its own checker (pipeline::stack_checker)"
                 .into(),
         });
     }
@@ -111,13 +187,48 @@ pub fn checker(scene: &Scene) -> Result<(Checker, Vec<String>), Error> {
     ))
 }
 
-/// Judge a scene at its thickness on each of its roughness files and report the worst; with
-/// `exact`, also solve the contact on the scene's height map and judge the exact fields.
-pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error> {
+/// The checker of a layer-stack scene with one roughness file, and its reader's warnings.
+pub fn stack_checker(scene: &Scene) -> Result<(StackChecker, Vec<String>), Error> {
+    let refused = [
+        ("load.friction (sliding)", scene.friction > 0.0),
+        ("criteria.shear_tail", scene.criteria.shear_tail.is_some()),
+    ];
+    if let Some((what, _)) = refused.iter().find(|(_, on)| *on) {
+        return Err(Error::Value {
+            origin: origin(scene),
+            msg: format!("{what} is not available for a layer stack ([[layer]] tables)"),
+        });
+    }
+    let (spectrum, warnings) = scene.roughness.spectrum()?;
+    Ok((
+        StackChecker::new(&spectrum, scene.stack_design(), scene.settings)?,
+        warnings,
+    ))
+}
+
+/// The verdict on one roughness file of a scene, with the reader's warnings.
+fn run_one(scene: &Scene) -> Result<(Verdict, Vec<String>), Error> {
+    if scene.is_stack() {
+        let (checker, warnings) = stack_checker(scene)?;
+        return Ok((Verdict::Stack(checker.run()?), warnings));
+    }
     let thickness = scene.thickness.ok_or_else(|| Error::Value {
         origin: origin(scene),
         msg: "film.thickness is missing; give the film thickness (thickness = \"10 um\" under [film], or --thickness 10um)".into(),
     })?;
+    let (checker, warnings) = checker(scene)?;
+    Ok((Verdict::Film(checker.run(thickness)?), warnings))
+}
+
+/// Judge a scene at its thickness on each of its roughness files and report the worst; with
+/// `exact`, also solve the contact on the scene's height map and judge the exact fields.
+pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error> {
+    if exact.is_some() && scene.is_stack() {
+        return Err(Error::Value {
+            origin: "--verify".into(),
+            msg: "not available for a layer stack ([[layer]] tables) yet".into(),
+        });
+    }
     if exact.is_some() && !scene.roughness.more_files.is_empty() {
         return Err(Error::Value {
             origin: "--verify".into(),
@@ -129,8 +240,7 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
         .each_file()
         .into_par_iter()
         .map(|s| {
-            let (checker, warnings) = checker(&s)?;
-            let outcome = checker.run(thickness)?;
+            let (outcome, warnings) = run_one(&s)?;
             Ok((s, outcome, warnings))
         })
         .collect::<Result<Vec<_>, Error>>()?;
@@ -143,9 +253,9 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
                     .file()
                     .map(Path::to_path_buf)
                     .unwrap_or_default(),
-                pass: o.pass,
-                governing: o.governing,
-                margin: governing_margin(o),
+                pass: o.pass(),
+                governing: o.governing(),
+                margin: o.margin(),
             })
             .collect()
     } else {
@@ -157,8 +267,8 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
     let (scene, mut outcome, own_reads) = runs
         .into_iter()
         .min_by(|(_, a, _), (_, b, _)| {
-            let (pa, ma) = severity(a);
-            let (pb, mb) = severity(b);
+            let (pa, ma) = a.severity();
+            let (pb, mb) = b.severity();
             pa.cmp(&pb).then(ma.total_cmp(&mb))
         })
         .expect("a scene has at least one roughness");
@@ -166,26 +276,34 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
         (true, Some(f)) => format!("{}: {w}", f.display()),
         _ => w.clone(),
     };
-    warnings.extend(outcome.warnings.iter().map(named));
+    warnings.extend(outcome.warnings_mut().iter().map(named));
     // The reading's warnings travel with the outcome into every report format.
-    outcome.warnings.splice(0..0, own_reads);
+    outcome.warnings_mut().splice(0..0, own_reads);
     let mut exact_warnings = Vec::new();
     let exact = exact
         .map(|settings| {
             let (map, surface, mismatch) = scene_map(&scene)?;
             exact_warnings.extend(periodic_warning(&map, mismatch));
             let design = scene.design();
+            let thickness = outcome.film().expect("a stack is refused above").thickness;
             let verification = verify(&surface, &design, thickness, settings)?;
             Ok::<_, Error>(Exact { map, verification })
         })
         .transpose()?;
-    outcome.warnings.extend(exact_warnings.iter().cloned());
+    outcome
+        .warnings_mut()
+        .extend(exact_warnings.iter().cloned());
     warnings.extend(exact_warnings);
-    let levers = if outcome.pass {
-        Vec::new()
-    } else {
-        let (spectrum, _) = scene.roughness.spectrum()?;
-        levers(&spectrum, &scene.design(), scene.settings, &outcome)?
+    let levers = match &outcome {
+        Verdict::Film(o) if !o.pass => {
+            let (spectrum, _) = scene.roughness.spectrum()?;
+            levers(&spectrum, &scene.design(), scene.settings, o)?
+        }
+        Verdict::Stack(o) if !o.pass => {
+            let (spectrum, _) = scene.roughness.spectrum()?;
+            stack_levers(&spectrum, &scene.stack_design(), scene.settings, o)?
+        }
+        _ => Vec::new(),
     };
     Ok(Judged {
         scene,

@@ -2,51 +2,43 @@
 //! (eqs. B8–B12), the outcome with its validity warnings, the sweep, and the utilisation that
 //! the minimum-thickness search ([`super::min_thickness`]) runs on.
 
+use super::basis::{Basis, Wording, check_warnings, finite_guard, governing, min_thickness_check};
 use super::criteria::{limit, upper_check, yield_governing};
 use super::*;
 use crate::contact::{self, Contact, Engine, NormalStress, Request, SlidingShear};
 use crate::error::Error;
 use crate::layer::Stack;
-use crate::prec::{Settings, Termination};
+use crate::prec::Settings;
 use crate::psd::Spectrum;
 use crate::tail::ShearVector;
 use rayon::prelude::*;
 
 /// One spectrum and one design, with the engine's d-independent precomputation.
 pub struct Checker {
-    engine: Engine,
-    /// The engine of the d_min search, at [`crate::prec::SEARCH_RTOL`] (or the scene's rtol if
-    /// looser): d_min is wanted to [`D_MIN_RTOL`], and the utilisation's error enters its
-    /// estimate.
-    search: Engine,
+    basis: Basis,
     design: Design,
-    q_low: f64,
-    q_high: f64,
-    /// Rms slope ξ of the spectrum.
-    rms_slope: f64,
-    /// h_rms of the spectrum, m.
-    h_rms: f64,
 }
+
+/// How a film's validity warnings name it.
+const FILM: Wording = Wording {
+    what: "film thickness",
+    depth: "q_L d",
+    exact: " (exact solutions: 2x at q_L d = 0.3, 10x or more at q_L d <= 0.1)",
+    verify: "; check with --verify on a height map",
+    strained: "film",
+};
 
 impl Checker {
     pub fn new(spectrum: &Spectrum, design: Design, settings: Settings) -> Result<Self, Error> {
-        validate(
+        let basis = Basis::new(
+            spectrum,
             &design.criteria,
             design.pressure,
             &[design.bond_strength],
             design.yield_strength,
+            settings,
         )?;
-        let (q_low, q_high) = spectrum.support();
-        let (engine, search) = engines(spectrum, settings);
-        Ok(Self {
-            engine,
-            search,
-            design,
-            q_low,
-            q_high,
-            rms_slope: spectrum.slope_sq().value.sqrt(),
-            h_rms: spectrum.h_rms_sq().value.sqrt(),
-        })
+        Ok(Self { basis, design })
     }
 
     pub fn design(&self) -> &Design {
@@ -98,12 +90,12 @@ impl Checker {
 
     /// Everything at one thickness: all engine quantities and the stress checks.
     pub fn evaluate(&self, thickness: f64) -> Result<Evaluation, Error> {
-        let (contact, mut sliding) = self.contact(&self.engine, thickness, Request::all())?;
+        let (contact, mut sliding) = self.contact(&self.basis.engine, thickness, Request::all())?;
         if let Some(s) = sliding.as_mut() {
             s.coupling = Some(contact::friction_coupling(
                 &self.stack(thickness)?,
                 s.friction,
-                (self.q_low, self.q_high),
+                (self.basis.q_low, self.basis.q_high),
             ));
         }
         self.assess(contact, sliding, true)
@@ -224,20 +216,19 @@ impl Checker {
     /// check that has the largest; only what those checks need is computed.
     fn utilisation(&self, thickness: f64) -> Result<Utilisation, Error> {
         let req = self.design.criteria.checks.request();
-        let (contact, sliding) = self.contact(&self.search, thickness, req)?;
+        let (contact, sliding) = self.contact(&self.basis.search, thickness, req)?;
         let ev = self.assess(contact, sliding, false)?;
         Ok(worst_utilisation(&ev.checks))
     }
 
     /// The scan range [d_lo, d_hi] of the minimum-thickness search (module docs).
     pub fn scan_range(&self) -> (f64, f64) {
-        scan_range(self.q_low, self.q_high)
+        self.basis.scan_range()
     }
 
     /// The smallest thickness above which every enabled stress check passes (module docs).
     pub fn min_thickness(&self) -> Result<MinThickness, Error> {
-        let (lo, hi) = self.scan_range();
-        search_min_thickness(lo, hi, |d| self.utilisation(d))
+        self.basis.min_thickness(|d| self.utilisation(d))
     }
 
     /// The full check at the design's thickness: all quantities, the enabled checks, d_min.
@@ -252,28 +243,7 @@ impl Checker {
         let mut checks = evaluation.checks.clone();
         let mut warnings = Vec::new();
         if let Some(m) = &min_thickness {
-            let value = Estimate::exact(thickness);
-            checks.push(match m.thickness {
-                Some(dm) => {
-                    let pass = thickness >= dm.value;
-                    CheckResult {
-                        kind: CheckKind::MinThickness,
-                        value,
-                        limit: Some(dm.value),
-                        margin: Some(1.0 - dm.value / thickness),
-                        pass,
-                        undecided: (thickness - dm.value).abs() <= dm.err,
-                    }
-                }
-                None => CheckResult {
-                    kind: CheckKind::MinThickness,
-                    value,
-                    limit: None,
-                    margin: None,
-                    pass: false,
-                    undecided: false,
-                },
-            });
+            checks.push(min_thickness_check(thickness, m));
             if m.thickness.is_none() {
                 warnings.push(
                     "no film thickness passes: even a bulk film fails the enabled checks".into(),
@@ -286,19 +256,7 @@ impl Checker {
             }
         }
         for c in &checks {
-            if c.undecided {
-                warnings.push(format!(
-                    "{}: the value is within its numerical error of the limit; the verdict is fragile",
-                    c.kind.name()
-                ));
-            }
-            if c.value.status == Termination::ToleranceNotReached {
-                warnings.push(format!(
-                    "{}: the requested tolerance was not reached (error estimate {:.2e})",
-                    c.kind.name(),
-                    c.value.err
-                ));
-            }
+            warnings.extend(check_warnings(c.kind.name(), c));
         }
         warnings.extend(self.validity_warnings(&evaluation.contact, thickness));
         if let Some(c) = evaluation.sliding.and_then(|s| s.coupling)
@@ -311,31 +269,11 @@ impl Checker {
                  sliding stresses are indicative only (check with the exact solver)"
             ));
         }
-        // No NaN or infinity reaches a verdict: a non-finite value is a numerical failure.
-        if let Some(c) = checks.iter().find(|c| {
-            !(c.value.value.is_finite() && c.value.err.is_finite())
-                || c.margin.is_some_and(|m| !m.is_finite())
-        }) {
-            return Err(Error::Numerical {
-                what: "design check",
-                detail: format!(
-                    "{}: value {:e} ± {:e}, margin {:?} at d = {thickness:e} m",
-                    c.kind.name(),
-                    c.value.value,
-                    c.value.err,
-                    c.margin
-                ),
-            });
+        for c in &checks {
+            finite_guard(c.kind.name(), c, &format!(" at d = {thickness:e} m"))?;
         }
         let pass = checks.iter().all(|c| c.pass);
-        let governing = checks
-            .iter()
-            .min_by(|a, b| {
-                let ma = a.margin.unwrap_or(f64::NEG_INFINITY);
-                let mb = b.margin.unwrap_or(f64::NEG_INFINITY);
-                ma.total_cmp(&mb)
-            })
-            .map(|c| c.kind);
+        let governing = governing(&checks, |c| c.margin).map(|c| c.kind);
         Ok(Outcome {
             thickness,
             evaluation,
@@ -344,54 +282,20 @@ impl Checker {
             pass,
             governing,
             warnings,
-            h_rms: self.h_rms,
-            rms_slope: self.rms_slope,
+            h_rms: self.basis.h_rms,
+            rms_slope: self.basis.rms_slope,
         })
     }
 
     /// Where the theory's assumptions are strained (module docs, "Validity"): few long waves
     /// carrying the contact, near-full contact, slopes outside small-slope elasticity.
     fn validity_warnings(&self, c: &Contact, thickness: f64) -> Vec<String> {
-        let mut w = Vec::new();
-        if self.q_high > 2.0 * self.q_low && c.low_octave_share > LOW_OCTAVE_WARN {
-            w.push(format!(
-                "{:.0} % of G(q1) (the contact stress variance) comes from the lowest octave of the \
-                 spectrum (q_L d = {:.3}): a few long waves carry the contact, where Persson's theory \
-                 under-estimates the contact area (exact solutions: 2x at q_L d = 0.3, 10x or more \
-                 at q_L d <= 0.1), so the contact-pressure figures (mean pressure in contact, \
-                 sigma peaks) are conservative; the result also depends on where the data start \
-                 (q_min); check with --verify on a height map",
-                100.0 * c.low_octave_share,
-                self.q_low * thickness
-            ));
-        }
-        if c.area_fraction.value > FULL_CONTACT_WARN {
-            w.push(format!(
-                "near full contact (A/A0 = {:.3}): the rms stresses tend to the exact full-contact \
-                 values, but the partial-contact distribution of eq. (B11) and the peak values \
-                 drawn from it are outside the range the theory was built and tested for",
-                c.area_fraction.value
-            ));
-        }
-        if self.rms_slope > SLOPE_WARN {
-            w.push(format!(
-                "rms slope {:.3} > 1: the theory is small-slope linear elasticity; at \
-                 such slopes the film's strains are large and the stresses are indicative only",
-                self.rms_slope
-            ));
-        }
-        w.extend(data_warnings(
-            "film thickness",
-            thickness,
-            self.h_rms,
-            self.q_low,
-        ));
-        w
+        self.basis.validity_warnings(c, thickness, &FILM)
     }
 
     /// The h_rms (m) and rms slope of the spectrum the design is judged with.
     pub fn roughness(&self) -> (f64, f64) {
-        (self.h_rms, self.rms_slope)
+        (self.basis.h_rms, self.basis.rms_slope)
     }
 
     /// Evaluations at many thicknesses, in parallel; each equal to [`evaluate`](Self::evaluate)
@@ -402,7 +306,7 @@ impl Checker {
             .fold((f64::INFINITY, 0.0f64), |(lo, hi), &d| {
                 (lo.min(d), hi.max(d))
             });
-        self.engine.prepare(&self.design.layers, lo, hi);
+        self.basis.engine.prepare(&self.design.layers, lo, hi);
         thicknesses.par_iter().map(|&d| self.evaluate(d)).collect()
     }
 }

@@ -41,6 +41,9 @@ pub struct Lever {
     /// The design's present value, SI.
     pub current: f64,
     pub unit: &'static str,
+    /// In a layer stack, the layer the lever changes (its thickness, or the bond below it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at: Option<String>,
 }
 
 fn all_stress_checks_pass(
@@ -55,7 +58,9 @@ fn all_stress_checks_pass(
 
 /// The largest factor f in [SPAN, 1] such that `passes(g)` for every grid factor g ≤ f, refined
 /// by bisection; `None` when the smallest grid factor fails.
-fn largest_passing(passes: impl Fn(f64) -> Result<bool, Error>) -> Result<Option<f64>, Error> {
+pub(crate) fn largest_passing(
+    passes: impl Fn(f64) -> Result<bool, Error>,
+) -> Result<Option<f64>, Error> {
     let grid: Vec<f64> = (0..GRID)
         .map(|i| SPAN.powf(1.0 - i as f64 / (GRID - 1) as f64))
         .collect();
@@ -86,7 +91,7 @@ fn largest_passing(passes: impl Fn(f64) -> Result<bool, Error>) -> Result<Option
 }
 
 /// The spectrum with its lowest octave scaled by `k` (tabulated, log-spaced).
-fn low_octave_scaled(spectrum: &Spectrum, k: f64) -> Result<Spectrum, Error> {
+pub(crate) fn low_octave_scaled(spectrum: &Spectrum, k: f64) -> Result<Spectrum, Error> {
     let (lo, hi) = spectrum.support();
     let edge = (2.0 * lo).min(hi);
     let n = ((hi / lo).log10() * TAB_PER_DECADE).ceil().max(2.0) as usize;
@@ -105,7 +110,7 @@ fn low_octave_scaled(spectrum: &Spectrum, k: f64) -> Result<Spectrum, Error> {
 }
 
 /// rms height of the lowest octave [q_L, 2 q_L], m.
-fn low_octave_rms(spectrum: &Spectrum) -> Result<f64, Error> {
+pub(crate) fn low_octave_rms(spectrum: &Spectrum) -> Result<f64, Error> {
     let (lo, hi) = spectrum.support();
     let octave = low_octave_scaled(spectrum, 1.0)?;
     let part = match octave {
@@ -142,6 +147,7 @@ pub fn levers(
             value: Some(m.value),
             current: d,
             unit: "m",
+            at: None,
         });
     }
     if failing.is_empty() {
@@ -163,6 +169,7 @@ pub fn levers(
             value: Some(c.value.value * sf),
             current,
             unit: "Pa",
+            at: None,
         });
     }
     let p0 = design.pressure;
@@ -177,6 +184,7 @@ pub fn levers(
         value: pressure.map(|f| p0 * f),
         current: p0,
         unit: "Pa",
+        at: None,
     });
     let rms = low_octave_rms(spectrum)?;
     let k = largest_passing(|k| {
@@ -188,6 +196,7 @@ pub fn levers(
         value: k.map(|k| rms * k.sqrt()),
         current: rms,
         unit: "m",
+        at: None,
     });
     Ok(out)
 }

@@ -19,7 +19,8 @@
 //! shared with the exact check ([`crate::verify`]) are in [`criteria`]; the minimum-thickness
 //! search and the argument for it in [`min_thickness`], its root finder in [`itp`]; what alone
 //! would make a failing design pass in [`levers`]; the same checks at every interface of a
-//! layer stack in [`stack`].
+//! layer stack in [`stack`], its levers in [`stack_levers`]; what the film's and the stack's
+//! checkers share in `basis`.
 //!
 //! ## Validity
 //! The outcome carries a warning, with the number that triggered it, where the theory is
@@ -31,12 +32,14 @@
 //! than the film thickness (the interface stress comes from wavelengths of the order of d and
 //! longer, which were not measured).
 
+pub(crate) mod basis;
 mod checker;
 pub mod criteria;
 pub mod itp;
 pub mod levers;
 pub mod min_thickness;
 pub mod stack;
+pub mod stack_levers;
 #[cfg(test)]
 mod tests;
 

@@ -20,17 +20,16 @@
 //! Every check carries the interface's name ("bond-shear" at the interface below layer k is
 //! named after layer k).
 
+use super::basis::{Basis, Wording, check_warnings, finite_guard, governing, min_thickness_check};
 use super::criteria::{limit, upper_check, yield_governing};
-use super::{
-    CheckKind, CheckResult, Criteria, FULL_CONTACT_WARN, LOW_OCTAVE_WARN, MinThickness, SLOPE_WARN,
-    Utilisation, search_min_thickness,
-};
-use crate::contact::{self, Contact, Engine, NormalStress, Request, StackContact};
+use super::{CheckKind, CheckResult, Criteria, MinThickness, Utilisation};
+use crate::contact::{self, NormalStress, Request, StackContact};
 use crate::error::Error;
 use crate::layer::Elastic;
 use crate::layer::stack::{Layer, Stack};
 use crate::prec::{Estimate, Settings};
 use crate::psd::Spectrum;
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// One layer of a stack design: its name, material, thickness (m) and the shear strength of
@@ -100,18 +99,41 @@ pub struct StackOutcome {
     pub rms_slope: f64,
 }
 
+/// The stack's results and stress checks with the layer `thickness_of` at one thickness (a
+/// row of the thickness sweep).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StackRow {
+    /// The varied layer's thickness (m).
+    pub thickness: f64,
+    pub contact: StackContact,
+    /// p0·A0/A (Pa).
+    pub mean_contact_pressure: Estimate,
+    pub interfaces: Vec<InterfaceEvaluation>,
+    /// bond-shear at each interface and substrate-yield (those enabled).
+    pub checks: Vec<StackCheck>,
+}
+
+impl StackOutcome {
+    /// The check with the smallest margin (none passing counts least): the one that decides.
+    pub fn governing(&self) -> Option<&StackCheck> {
+        governing(&self.checks, |c| c.result.margin)
+    }
+}
+
 /// Checks a stack design on one spectrum.
 pub struct StackChecker {
-    engine: Engine,
-    search: Engine,
+    basis: Basis,
     design: StackDesign,
-    q_low: f64,
-    q_high: f64,
-    /// Rms slope ξ of the spectrum.
-    rms_slope: f64,
-    /// h_rms of the spectrum, m.
-    h_rms: f64,
 }
+
+/// How a stack's validity warnings name its layers.
+const STACK: Wording = Wording {
+    what: "coating thickness (all layers)",
+    depth: "q_L z at the bottom interface",
+    exact: "",
+    verify: "",
+    strained: "coating",
+};
 
 impl StackChecker {
     pub fn new(
@@ -120,11 +142,13 @@ impl StackChecker {
         settings: Settings,
     ) -> Result<Self, Error> {
         let bonds: Vec<f64> = design.layers.iter().map(|l| l.bond_strength).collect();
-        super::checker::validate(
+        let basis = Basis::new(
+            spectrum,
             &design.criteria,
             design.pressure,
             &bonds,
             design.yield_strength,
+            settings,
         )?;
         if design.thickness_of >= design.layers.len() {
             return Err(Error::invalid(
@@ -133,17 +157,7 @@ impl StackChecker {
                 "a layer of the stack",
             ));
         }
-        let (q_low, q_high) = spectrum.support();
-        let (engine, search) = super::checker::engines(spectrum, settings);
-        Ok(Self {
-            engine,
-            search,
-            design,
-            q_low,
-            q_high,
-            rms_slope: spectrum.slope_sq().value.sqrt(),
-            h_rms: spectrum.h_rms_sq().value.sqrt(),
-        })
+        Ok(Self { basis, design })
     }
 
     pub fn design(&self) -> &StackDesign {
@@ -247,72 +261,76 @@ impl StackChecker {
 
     /// Utilisation of the enabled stress checks with the layer `thickness_of` at `d`.
     fn utilisation(&self, d: f64) -> Result<Utilisation, Error> {
-        let c =
-            self.search
-                .evaluate_stack(&self.stack(d)?, self.design.pressure, self.request())?;
+        let c = self.basis.search.evaluate_stack(
+            &self.stack(d)?,
+            self.design.pressure,
+            self.request(),
+        )?;
         let (_, _, checks) = self.assess(&c)?;
         Ok(super::checker::worst_utilisation(
             checks.iter().map(|c| &c.result),
         ))
     }
 
+    /// Everything with the layer `thickness_of` at `d`, the others fixed: all quantities and
+    /// the stress checks (those of [`run`](Self::run) at the design's thickness, to the last
+    /// bit).
+    pub fn evaluate(&self, d: f64) -> Result<StackRow, Error> {
+        let contact = self.basis.engine.evaluate_stack(
+            &self.stack(d)?,
+            self.design.pressure,
+            Request::all(),
+        )?;
+        let (mean_contact_pressure, interfaces, checks) = self.assess(&contact)?;
+        Ok(StackRow {
+            thickness: d,
+            contact,
+            mean_contact_pressure,
+            interfaces,
+            checks,
+        })
+    }
+
+    /// [`evaluate`](Self::evaluate) at many thicknesses of the layer `thickness_of`, in
+    /// parallel.
+    pub fn sweep(&self, thicknesses: &[f64]) -> Result<Vec<StackRow>, Error> {
+        thicknesses.par_iter().map(|&d| self.evaluate(d)).collect()
+    }
+
+    /// The h_rms (m) and rms slope of the spectrum the stack is judged with.
+    pub fn roughness(&self) -> (f64, f64) {
+        (self.basis.h_rms, self.basis.rms_slope)
+    }
+
+    /// Every enabled stress check passes at the design's thicknesses (what the levers
+    /// search on, [`super::stack_levers`]).
+    pub fn stress_checks_pass(&self) -> Result<bool, Error> {
+        let d = &self.design;
+        let c = self.basis.engine.evaluate_stack(
+            &self.stack(d.layers[d.thickness_of].thickness)?,
+            d.pressure,
+            self.request(),
+        )?;
+        let (_, _, checks) = self.assess(&c)?;
+        Ok(checks.iter().all(|c| c.result.pass))
+    }
+
     /// The scan range of the minimum-thickness search for the varied layer (as for a film).
     pub fn scan_range(&self) -> (f64, f64) {
-        super::checker::scan_range(self.q_low, self.q_high)
+        self.basis.scan_range()
     }
 
     /// The smallest thickness of the layer `thickness_of` above which every enabled stress
     /// check passes, the others fixed.
     pub fn min_thickness(&self) -> Result<MinThickness, Error> {
-        let (lo, hi) = self.scan_range();
-        search_min_thickness(lo, hi, |d| self.utilisation(d))
-    }
-
-    /// Where the theory is strained, as for a film ([`super`], "Validity"), with the depth of
-    /// the bottom interface for the film thickness.
-    fn validity_warnings(&self, c: &Contact) -> Vec<String> {
-        let mut w = Vec::new();
-        let depth: f64 = self.design.layers.iter().map(|l| l.thickness).sum();
-        if self.q_high > 2.0 * self.q_low && c.low_octave_share > LOW_OCTAVE_WARN {
-            w.push(format!(
-                "{:.0} % of G(q1) (the contact stress variance) comes from the lowest octave of the \
-                 spectrum (q_L z = {:.3} at the bottom interface): a few long waves carry the \
-                 contact, where Persson's theory under-estimates the contact area, so the \
-                 contact-pressure figures (mean pressure in contact, sigma peaks) are \
-                 conservative; the result also depends on where the data start (q_min)",
-                100.0 * c.low_octave_share,
-                self.q_low * depth
-            ));
-        }
-        if c.area_fraction.value > FULL_CONTACT_WARN {
-            w.push(format!(
-                "near full contact (A/A0 = {:.3}): the rms stresses tend to the exact full-contact \
-                 values, but the partial-contact distribution of eq. (B11) and the peak values \
-                 drawn from it are outside the range the theory was built and tested for",
-                c.area_fraction.value
-            ));
-        }
-        if self.rms_slope > SLOPE_WARN {
-            w.push(format!(
-                "rms slope {:.3} > 1: the theory is small-slope linear elasticity; at \
-                 such slopes the coating's strains are large and the stresses are indicative only",
-                self.rms_slope
-            ));
-        }
-        w.extend(super::checker::data_warnings(
-            "coating thickness (all layers)",
-            depth,
-            self.h_rms,
-            self.q_low,
-        ));
-        w
+        self.basis.min_thickness(|d| self.utilisation(d))
     }
 
     /// The full check at the design's thicknesses.
     pub fn run(&self) -> Result<StackOutcome, Error> {
         let d = &self.design;
         let req = Request::all();
-        let contact = self.engine.evaluate_stack(
+        let contact = self.basis.engine.evaluate_stack(
             &self.stack(d.layers[d.thickness_of].thickness)?,
             d.pressure,
             req,
@@ -322,31 +340,19 @@ impl StackChecker {
         let min_thickness = if d.criteria.checks.min_thickness {
             let m = self.min_thickness()?;
             let layer = &d.layers[d.thickness_of];
-            let value = Estimate::exact(layer.thickness);
-            let result = match m.thickness {
-                Some(dm) => CheckResult {
-                    kind: CheckKind::MinThickness,
-                    value,
-                    limit: Some(dm.value),
-                    margin: Some(1.0 - dm.value / layer.thickness),
-                    pass: layer.thickness >= dm.value,
-                    undecided: (layer.thickness - dm.value).abs() <= dm.err,
-                },
-                None => {
-                    warnings.push(format!(
-                        "no thickness of layer '{}' passes: even a bulk layer fails the enabled checks",
-                        layer.name
-                    ));
-                    CheckResult {
-                        kind: CheckKind::MinThickness,
-                        value,
-                        limit: None,
-                        margin: None,
-                        pass: false,
-                        undecided: false,
-                    }
-                }
-            };
+            let result = min_thickness_check(layer.thickness, &m);
+            if m.thickness.is_none() {
+                warnings.push(format!(
+                    "no thickness of layer '{}' passes: even a bulk layer fails the enabled checks",
+                    layer.name
+                ));
+            } else if m.all_pass_to_floor {
+                warnings.push(format!(
+                    "every thickness of layer '{}' down to the scan floor {:.3e} m passes; d_min \
+                     is reported as that floor",
+                    layer.name, m.floor
+                ));
+            }
             checks.push(StackCheck {
                 at: layer.name.clone(),
                 result,
@@ -355,36 +361,14 @@ impl StackChecker {
         } else {
             None
         };
+        let depth: f64 = d.layers.iter().map(|l| l.thickness).sum();
         for c in &checks {
-            if c.result.undecided {
-                warnings.push(format!(
-                    "{} at {}: the value is within its numerical error of the limit; the verdict is fragile",
-                    c.result.kind.name(),
-                    c.at
-                ));
-            }
-            if !(c.result.value.value.is_finite() && c.result.value.err.is_finite()) {
-                return Err(Error::Numerical {
-                    what: "design check",
-                    detail: format!(
-                        "{} at {}: value {:e} ± {:e}",
-                        c.result.kind.name(),
-                        c.at,
-                        c.result.value.value,
-                        c.result.value.err
-                    ),
-                });
-            }
+            let name = format!("{} at {}", c.result.kind.name(), c.at);
+            warnings.extend(check_warnings(&name, &c.result));
+            finite_guard(&name, &c.result, "")?;
         }
-        warnings.extend(self.validity_warnings(&contact.top));
+        warnings.extend(self.basis.validity_warnings(&contact.top, depth, &STACK));
         let pass = checks.iter().all(|c| c.result.pass);
-        if !pass {
-            warnings.push(
-                "what alone would make a failing stack pass (the levers of a one-layer check) is \
-                 not searched for layer stacks yet"
-                    .into(),
-            );
-        }
         Ok(StackOutcome {
             contact,
             mean_contact_pressure: mean,
@@ -393,8 +377,8 @@ impl StackChecker {
             checks,
             pass,
             warnings,
-            h_rms: self.h_rms,
-            rms_slope: self.rms_slope,
+            h_rms: self.basis.h_rms,
+            rms_slope: self.basis.rms_slope,
         })
     }
 }

@@ -55,7 +55,7 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
         eprintln!("coatcheck: warning: {w}");
     }
     if scene.is_stack() {
-        return super::check_stack::run(&args, &scene);
+        super::check_stack::refuse(&args)?;
     }
     let several = !scene.roughness.more_files.is_empty();
     let (text, code) = match sweep {
@@ -105,6 +105,9 @@ fn run_sweep(
                 1 + scene.roughness.more_files.len()
             ),
         });
+    }
+    if scene.is_stack() {
+        return super::check_stack::sweep(args, scene, &log_space(from, to, n));
     }
     let (checker, read_warnings) = pipeline::checker(scene)?;
     for w in &read_warnings {

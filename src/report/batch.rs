@@ -7,7 +7,7 @@ use crate::batch::{SceneRun, Totals};
 use crate::check::CheckKind;
 use crate::check::levers::Lever;
 use crate::error::Error;
-use crate::pipeline::{Judged, governing_margin};
+use crate::pipeline::{Judged, Verdict};
 use crate::prec::Estimate;
 use serde::Serialize;
 use std::ops::Not;
@@ -17,6 +17,10 @@ use std::path::Path;
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CheckRecord {
     pub name: &'static str,
+    /// Where the check applies in a layer stack: a layer (the interface below it), or
+    /// `substrate` (absent for a film).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at: Option<String>,
     /// Pa for stresses, m for min-thickness ([`CheckRecord::unit`]).
     pub value: f64,
     pub value_err: f64,
@@ -90,9 +94,53 @@ pub struct Record {
     pub verify_tau_peak_pa: Option<f64>,
     pub verify_sigma_peak_interface_pa: Option<f64>,
     pub warnings: Vec<String>,
+    /// A layer stack's varied layer (`criteria.thickness_of`; `thickness_m` is its thickness)
+    /// and every interface, top first (absent for a film).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thickness_of: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interfaces: Option<Vec<InterfaceRecord>>,
     /// Why the scene could not be evaluated.
     pub error: Option<String>,
     pub seconds: f64,
+}
+
+/// One interface of a layer stack in a record (the shape of `interfaces[]` in the stack
+/// check's JSON).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct InterfaceRecord {
+    /// The layer above the interface.
+    pub name: String,
+    pub depth_m: f64,
+    pub sigma_rms_pa: f64,
+    pub sigma_rms_pa_err: f64,
+    pub tau_rms_pa: f64,
+    pub tau_rms_pa_err: f64,
+    pub tau_peak_pa: f64,
+    pub tau_peak_pa_err: f64,
+    pub sigma_peak_pa: f64,
+    pub sigma_peak_pa_err: f64,
+    pub bond_strength_pa: f64,
+    pub bond_exceedance: f64,
+}
+
+/// A check as a record, at `at` in a stack.
+fn check_record(c: &crate::check::CheckResult, at: Option<&str>) -> CheckRecord {
+    CheckRecord {
+        name: c.kind.name(),
+        at: at.map(Into::into),
+        value: c.value.value,
+        value_err: c.value.err,
+        unit: if c.kind == CheckKind::MinThickness {
+            "m"
+        } else {
+            "Pa"
+        },
+        limit: c.limit,
+        utilisation: c.margin.map(|m| 1.0 - m),
+        margin: c.margin,
+        pass: c.pass,
+    }
 }
 
 /// Value and error of an estimate, each `None` when the estimate is.
@@ -117,19 +165,14 @@ impl Record {
     /// The record of a judged scene.
     pub fn judged(file: &Path, j: &Judged, seconds: f64) -> Self {
         let o = &j.outcome;
-        let ev = &o.evaluation;
-        let c = &ev.contact;
         let mut r = Record {
             scene: file.display().to_string(),
             verdict: if j.pass() { "pass" } else { "fail" },
             seconds,
-            governing_check: o.governing.map(CheckKind::name),
-            margin: governing_margin(o),
-            utilisation: governing_margin(o).map(|m| 1.0 - m),
-            thickness_m: Some(o.thickness),
+            governing_check: o.governing().map(CheckKind::name),
+            margin: o.margin(),
+            utilisation: o.margin().map(|m| 1.0 - m),
             pressure_pa: Some(j.scene.pressure),
-            h_rms_m: Some(o.h_rms),
-            rms_slope: Some(o.rms_slope),
             worst_file: j.worst_file().map(|p| p.display().to_string()),
             files: j.files.len().max(1),
             levers: j.levers.clone(),
@@ -137,7 +180,30 @@ impl Record {
             ..Record::default()
         };
         (r.min_thickness_m, r.min_thickness_m_err) =
-            split(o.min_thickness.as_ref().and_then(|m| m.thickness));
+            split(o.min_thickness().and_then(|m| m.thickness));
+        match o {
+            Verdict::Film(o) => r.film(o),
+            Verdict::Stack(o) => r.stack(&j.scene, o),
+        }
+        if let Some(x) = &j.exact {
+            let v = &x.verification;
+            r.verify_verdict = Some(if v.pass { "pass" } else { "fail" });
+            r.verify_area_fraction = Some(v.area_fraction.value);
+            r.verify_mean_contact_pressure_pa = Some(v.mean_contact_pressure.value);
+            r.verify_tau_peak_pa = Some(v.tau_peak.value.value);
+            r.verify_sigma_peak_interface_pa = Some(v.sigma_peak_interface.value.value);
+        }
+        r
+    }
+
+    /// A film's results and checks.
+    fn film(&mut self, o: &crate::check::Outcome) {
+        let r = self;
+        let ev = &o.evaluation;
+        let c = &ev.contact;
+        r.thickness_m = Some(o.thickness);
+        r.h_rms_m = Some(o.h_rms);
+        r.rms_slope = Some(o.rms_slope);
         (r.area_fraction, r.area_fraction_err) = split(Some(c.area_fraction));
         (r.mean_contact_pressure_pa, r.mean_contact_pressure_pa_err) =
             split(Some(ev.mean_contact_pressure));
@@ -154,38 +220,71 @@ impl Record {
             (r.tau_y_rms_interface_pa, r.tau_y_rms_interface_pa_err) = split(Some(s.tau_y_rms));
             (r.tau_peak_static_pa, r.tau_peak_static_pa_err) = split(ev.tau_peak_static);
         }
+        r.checks = o.checks.iter().map(|c| check_record(c, None)).collect();
+    }
+
+    /// A layer stack's results (the top-level keys of its JSON: the top surface, the contact,
+    /// and the bottom interface's stresses), its interfaces and its checks with where they
+    /// apply.
+    fn stack(&mut self, scene: &crate::scene::Scene, o: &crate::check::stack::StackOutcome) {
+        let r = self;
+        let c = &o.contact.top;
+        let design = scene.stack_design();
+        let varied = &design.layers[design.thickness_of];
+        r.thickness_m = Some(varied.thickness);
+        r.thickness_of = Some(varied.name.clone());
+        r.h_rms_m = Some(o.h_rms);
+        r.rms_slope = Some(o.rms_slope);
+        (r.area_fraction, r.area_fraction_err) = split(Some(c.area_fraction));
+        (r.mean_contact_pressure_pa, r.mean_contact_pressure_pa_err) =
+            split(Some(o.mean_contact_pressure));
+        (r.sigma_rms_top_pa, r.sigma_rms_top_pa_err) = split(c.sigma_rms_top);
+        (r.e_eff_over_e_film, r.e_eff_over_e_film_err) = split(c.e_eff_over_e_film);
+        if let Some(b) = o.interfaces.last() {
+            (r.sigma_rms_interface_pa, r.sigma_rms_interface_pa_err) = split(Some(b.sigma_rms));
+            (r.tau_rms_interface_pa, r.tau_rms_interface_pa_err) = split(Some(b.tau_rms));
+            (r.tau_peak_pa, r.tau_peak_pa_err) = split(Some(b.tau_peak));
+            (r.sigma_peak_interface_pa, r.sigma_peak_interface_pa_err) = split(Some(b.sigma_peak));
+        }
+        r.interfaces = Some(
+            o.interfaces
+                .iter()
+                .map(|i| InterfaceRecord {
+                    name: i.name.clone(),
+                    depth_m: i.depth,
+                    sigma_rms_pa: i.sigma_rms.value,
+                    sigma_rms_pa_err: i.sigma_rms.err,
+                    tau_rms_pa: i.tau_rms.value,
+                    tau_rms_pa_err: i.tau_rms.err,
+                    tau_peak_pa: i.tau_peak.value,
+                    tau_peak_pa_err: i.tau_peak.err,
+                    sigma_peak_pa: i.sigma_peak.value,
+                    sigma_peak_pa_err: i.sigma_peak.err,
+                    bond_strength_pa: i.bond_strength,
+                    bond_exceedance: i.bond_exceedance,
+                })
+                .collect(),
+        );
         r.checks = o
             .checks
             .iter()
-            .map(|c| CheckRecord {
-                name: c.kind.name(),
-                value: c.value.value,
-                value_err: c.value.err,
-                unit: if c.kind == CheckKind::MinThickness {
-                    "m"
-                } else {
-                    "Pa"
-                },
-                limit: c.limit,
-                utilisation: c.margin.map(|m| 1.0 - m),
-                margin: c.margin,
-                pass: c.pass,
-            })
+            .map(|c| check_record(&c.result, Some(&c.at)))
             .collect();
-        if let Some(x) = &j.exact {
-            let v = &x.verification;
-            r.verify_verdict = Some(if v.pass { "pass" } else { "fail" });
-            r.verify_area_fraction = Some(v.area_fraction.value);
-            r.verify_mean_contact_pressure_pa = Some(v.mean_contact_pressure.value);
-            r.verify_tau_peak_pa = Some(v.tau_peak.value.value);
-            r.verify_sigma_peak_interface_pa = Some(v.sigma_peak_interface.value.value);
-        }
-        r
     }
 
-    /// One check, if it ran.
+    /// One check, if it ran; in a layer stack, where it has the least margin (none counts
+    /// least).
     pub fn check(&self, kind: CheckKind) -> Option<&CheckRecord> {
-        self.checks.iter().find(|c| c.name == kind.name())
+        crate::check::basis::governing(self.checks.iter().filter(|c| c.name == kind.name()), |c| {
+            c.margin
+        })
+    }
+
+    /// A check at one place of a layer stack (a layer's name, or `substrate`).
+    pub fn check_at(&self, kind: CheckKind, at: &str) -> Option<&CheckRecord> {
+        self.checks
+            .iter()
+            .find(|c| c.name == kind.name() && c.at.as_deref() == Some(at))
     }
 
     /// The margin of one check, if it ran.
@@ -370,8 +469,58 @@ const TAIL: &[Column] = &[
     ("seconds", |r| Cell::Number(Some(r.seconds))),
 ];
 
+/// The flat columns of one interface of a layer stack, each name after `interface<k>_` (k from
+/// 1, the top layer's): its record's fields, then its bond-shear check's limit, utilisation,
+/// margin and pass.
+pub type InterfaceColumn = (&'static str, fn(&Record, &InterfaceRecord) -> Cell);
+
+/// The bond-shear check at an interface.
+fn bond_at<'a>(r: &'a Record, i: &InterfaceRecord) -> Option<&'a CheckRecord> {
+    r.check_at(CheckKind::BondShear, &i.name)
+}
+
+pub const INTERFACE_COLUMNS: &[InterfaceColumn] = &[
+    ("name", |_, i| Cell::Text(Some(i.name.clone()))),
+    ("depth_m", |_, i| Cell::Number(Some(i.depth_m))),
+    ("sigma_rms_pa", |_, i| Cell::Number(Some(i.sigma_rms_pa))),
+    ("sigma_rms_pa_err", |_, i| {
+        Cell::Number(Some(i.sigma_rms_pa_err))
+    }),
+    ("tau_rms_pa", |_, i| Cell::Number(Some(i.tau_rms_pa))),
+    ("tau_rms_pa_err", |_, i| {
+        Cell::Number(Some(i.tau_rms_pa_err))
+    }),
+    ("tau_peak_pa", |_, i| Cell::Number(Some(i.tau_peak_pa))),
+    ("tau_peak_pa_err", |_, i| {
+        Cell::Number(Some(i.tau_peak_pa_err))
+    }),
+    ("sigma_peak_pa", |_, i| Cell::Number(Some(i.sigma_peak_pa))),
+    ("sigma_peak_pa_err", |_, i| {
+        Cell::Number(Some(i.sigma_peak_pa_err))
+    }),
+    ("bond_strength_pa", |_, i| {
+        Cell::Number(Some(i.bond_strength_pa))
+    }),
+    ("bond_exceedance", |_, i| {
+        Cell::Number(Some(i.bond_exceedance))
+    }),
+    ("bond_shear_limit_pa", |r, i| {
+        Cell::Number(bond_at(r, i).and_then(|c| c.limit))
+    }),
+    ("bond_shear_utilisation", |r, i| {
+        Cell::Number(bond_at(r, i).and_then(|c| c.utilisation))
+    }),
+    ("bond_shear_margin", |r, i| {
+        Cell::Number(bond_at(r, i).and_then(|c| c.margin))
+    }),
+    ("bond_shear_pass", |r, i| {
+        Cell::Text(bond_at(r, i).map(|c| c.pass.to_string()))
+    }),
+];
+
 /// Every flat column, in order: the results, each check's five cells, the levers, the exact
-/// check, then the bookkeeping.
+/// check, then the bookkeeping. Records of layer stacks add, after these, `thickness_of` and
+/// [`INTERFACE_COLUMNS`] for each interface of the deepest stack.
 pub fn columns() -> Vec<Column> {
     let mut all = HEAD.to_vec();
     all.extend(BOND);
@@ -407,16 +556,45 @@ pub fn records_csv(records: &[Record]) -> Result<String, Error> {
         detail: e.to_string(),
     };
     let columns = columns();
+    let depth = records
+        .iter()
+        .filter_map(|r| r.interfaces.as_ref().map(Vec::len))
+        .max();
+    let text = |c: Cell| match c {
+        Cell::Text(t) => t.unwrap_or_default(),
+        Cell::Number(x) => x.map(|x| format!("{x:e}")).unwrap_or_default(),
+        Cell::Count(n) => n.to_string(),
+    };
     let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record(columns.iter().map(|(name, _)| *name))
-        .map_err(ser)?;
+    let mut head: Vec<String> = columns.iter().map(|(name, _)| name.to_string()).collect();
+    if let Some(n) = depth {
+        head.push("thickness_of".into());
+        for k in 1..=n {
+            head.extend(
+                INTERFACE_COLUMNS
+                    .iter()
+                    .map(|(name, _)| format!("interface{k}_{name}")),
+            );
+        }
+    }
+    w.write_record(&head).map_err(ser)?;
     for r in records {
-        w.write_record(columns.iter().map(|(_, get)| match get(r) {
-            Cell::Text(t) => t.unwrap_or_default(),
-            Cell::Number(x) => x.map(|x| format!("{x:e}")).unwrap_or_default(),
-            Cell::Count(n) => n.to_string(),
-        }))
-        .map_err(ser)?;
+        let mut row: Vec<String> = columns.iter().map(|(_, get)| text(get(r))).collect();
+        if let Some(n) = depth {
+            row.push(r.thickness_of.clone().unwrap_or_default());
+            let interfaces = r.interfaces.as_deref().unwrap_or_default();
+            for k in 0..n {
+                row.extend(
+                    INTERFACE_COLUMNS
+                        .iter()
+                        .map(|(_, get)| match interfaces.get(k) {
+                            Some(i) => text(get(r, i)),
+                            None => String::new(),
+                        }),
+                );
+            }
+        }
+        w.write_record(&row).map_err(ser)?;
     }
     let bytes = w.into_inner().map_err(|e| Error::Numerical {
         what: "CSV output",
@@ -474,8 +652,8 @@ pub fn summary(runs: &[SceneRun], seconds: f64) -> String {
                     scene += &format!("\n(worst of {}: {})", j.files.len(), name.display());
                 }
                 let o = &j.outcome;
-                let margin = governing_margin(o);
-                let dmin = match &o.min_thickness {
+                let margin = o.margin();
+                let dmin = match o.min_thickness() {
                     None => "-".into(),
                     Some(m) => match m.thickness {
                         None => "none passes".into(),
@@ -488,7 +666,7 @@ pub fn summary(runs: &[SceneRun], seconds: f64) -> String {
                 t.add_row([
                     scene,
                     verdict,
-                    o.governing.map_or("-", CheckKind::name).into(),
+                    o.governing_name().unwrap_or_else(|| "-".into()),
                     utilisation_cell(margin),
                     margin_cell(margin),
                     dmin,

@@ -412,7 +412,11 @@ pub fn human(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> String {
 /// when the scene lists several roughness files, and the exact section of `check --verify`.
 /// CSV is the batch's shape, one row ([`batch::records_csv`]).
 pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
-    let (scene, outcome) = (&j.scene, &j.outcome);
+    let outcome = match &j.outcome {
+        crate::pipeline::Verdict::Film(o) => o,
+        crate::pipeline::Verdict::Stack(o) => return super::stack::scene(j, o, format),
+    };
+    let scene = &j.scene;
     let ev = &outcome.evaluation;
     let verdict = if j.pass() { "pass" } else { "fail" };
     let several = !j.files.is_empty();

@@ -17,7 +17,7 @@ use crate::check::levers::{Lever, SPAN};
 use crate::check::{CheckKind, Checker, Outcome, log_space};
 use crate::contact::{NormalStress, tau_exceedance};
 use crate::figures::{Axis, Figure, Series};
-use crate::pipeline::Judged;
+use crate::pipeline::{Judged, Verdict};
 use crate::psd::Spectrum;
 use crate::report::plot::{Band, Extras, Legend, Marker, svg};
 
@@ -45,6 +45,9 @@ pub struct Section {
     pub levers: Vec<String>,
     pub inputs: Vec<(String, String)>,
     pub results: Vec<(String, String)>,
+    /// A layer stack's interfaces, top first: the layer above, depth, σ_rms, τ_rms, τ_peak,
+    /// σ_peak, P(|τ| > bond) (empty for a film).
+    pub interfaces: Vec<[String; 7]>,
     /// Persson against exact rows (quantity, Persson, exact), when the exact check ran.
     pub exact: Vec<[String; 3]>,
     pub plots: Vec<Plot>,
@@ -333,7 +336,10 @@ pub fn utilisation_plot(checker: &Checker, outcome: &Outcome) -> Result<Option<P
 /// uncertainty. The spectrum and checker are rebuilt from the scene (a few milliseconds).
 pub fn section(title: &str, j: &Judged) -> Result<Section, Error> {
     let scene = &j.scene;
-    let outcome = &j.outcome;
+    let outcome = match &j.outcome {
+        Verdict::Film(o) => o,
+        Verdict::Stack(o) => return super::html_stack::section(title, j, o),
+    };
     let (spectrum, _) = scene.roughness.spectrum()?;
     let checker = Checker::new(&spectrum, scene.design(), scene.settings)?;
     let checks = super::check::check_rows(outcome);
@@ -421,6 +427,7 @@ pub fn section(title: &str, j: &Judged) -> Result<Section, Error> {
         levers,
         inputs,
         results,
+        interfaces: Vec::new(),
         exact,
         plots,
         warnings: j.warnings.clone(),
@@ -445,6 +452,7 @@ pub fn page(runs: &[SceneRun], meta: &Meta) -> Result<String, Error> {
                     levers: Vec::new(),
                     inputs: Vec::new(),
                     results: Vec::new(),
+                    interfaces: Vec::new(),
                     exact: Vec::new(),
                     plots: Vec::new(),
                     warnings: Vec::new(),
@@ -468,6 +476,11 @@ pub fn lever_text(lever: &Lever) -> String {
             "µm",
             "rms height of the lowest octave of the roughness",
         ),
+    };
+    let what = match (&lever.at, lever.name) {
+        (Some(at), "thickness") => format!("thickness of layer '{at}'"),
+        (Some(at), "bond_strength") => format!("shear strength of the bond below '{at}'"),
+        _ => what.to_string(),
     };
     let show = |v: f64| super::sig(v / scale, 4);
     match lever.value {
@@ -577,6 +590,21 @@ fn section_html(s: &Section, level: u8) -> String {
             s.results.iter().map(|(k, v)| vec![k.clone(), v.clone()]),
         );
     }
+    if !s.interfaces.is_empty() {
+        out += &h(level + 1, "Interfaces (Persson's theory)");
+        out += &rows_table(
+            &[
+                "interface below",
+                "depth [µm]",
+                "σ_rms [MPa]",
+                "τ_rms [MPa]",
+                "τ_peak [MPa]",
+                "σ_peak [MPa]",
+                "P(|τ| > bond)",
+            ],
+            s.interfaces.iter().map(|r| r.to_vec()),
+        );
+    }
     if !s.exact.is_empty() {
         out += &h(level + 1, "Persson against the exact solution");
         out += &rows_table(
@@ -678,6 +706,7 @@ mod tests {
             levers: vec![],
             inputs: vec![("film".into(), "NBR".into())],
             results: vec![],
+            interfaces: vec![],
             exact: vec![],
             plots: vec![],
             warnings: vec!["thin".into()],

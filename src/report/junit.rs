@@ -3,7 +3,9 @@
 //! schema handled there).
 //!
 //! Layout: one `<testsuite>` per scene (named by its file), one `<testcase>` per enabled check
-//! (`bond-shear`, `substrate-yield`, `min-thickness`; classname = the scene file). A failing
+//! (`bond-shear`, `substrate-yield`, `min-thickness`; classname = the scene file); in a layer
+//! stack one per check and interface, named with where it applies (`bond-shear at primer`,
+//! `substrate-yield at substrate`). A failing
 //! check is a `<failure>` whose message carries the value, the limit and the margin (human
 //! units; SI in the text node); a scene that could not be evaluated is one `<testcase
 //! name="evaluate">` with an `<error>` carrying the message (file and line). Warnings go to the
@@ -71,7 +73,7 @@ pub fn report(runs: &[SceneRun]) -> Result<String, Error> {
                 let worst = j
                     .worst_file()
                     .map(|f| format!(" [worst of {} files: {}]", j.files.len(), f.display()));
-                for c in &j.outcome.checks {
+                for (at, c) in j.outcome.checks() {
                     let status = if c.pass {
                         TestCaseStatus::success()
                     } else {
@@ -91,7 +93,11 @@ pub fn report(runs: &[SceneRun]) -> Result<String, Error> {
                         ));
                         s
                     };
-                    let mut case = TestCase::new(c.kind.name(), status);
+                    let case_name = match at {
+                        Some(at) => format!("{} at {at}", c.kind.name()),
+                        None => c.kind.name().to_string(),
+                    };
+                    let mut case = TestCase::new(case_name, status);
                     case.set_classname(name.as_str());
                     suite.add_test_case(case);
                 }

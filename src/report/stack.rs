@@ -1,4 +1,6 @@
-//! The report of a layer-stack check ([`crate::check::stack`]): JSON and a human table.
+//! The report of a layer-stack check ([`crate::check::stack`]): JSON and a human table, and
+//! the one-row CSV of the batch's shape ([`super::batch`]); the levers of a failing stack
+//! ([`crate::check::stack_levers`]) follow the verdict as for a film.
 //!
 //! JSON: the top-level keys of a film's report (`check.schema.json`) for the top surface and
 //! the contact (`area_fraction`, `sigma_rms_top_pa`, `mean_contact_pressure_pa`, …), with
@@ -11,14 +13,43 @@
 //! scene echo lists the layers (`scene.layers`) and `thickness_of`.
 
 use super::check::{check_cells, check_json, put, put_min_thickness};
-use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
-use crate::check::stack::{StackCheck, StackOutcome};
+use super::{Format, batch, margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
+use crate::check::levers::Lever;
+use crate::check::stack::StackOutcome;
+use crate::error::Error;
+use crate::pipeline::Judged;
 use crate::prec::Estimate;
 use crate::scene::Scene;
 use serde_json::{Map, Value, json};
 
+/// The report of a judged layer stack (its outcome `o`): the table or JSON, with the per-file
+/// verdicts when the scene lists several roughness files; CSV is the batch's one row
+/// ([`batch::records_csv`]).
+pub fn scene(j: &Judged, o: &StackOutcome, format: Format) -> Result<String, Error> {
+    let scene = &j.scene;
+    Ok(match format {
+        Format::Table => format!("{}{}", batch::files_table(j), human(scene, o, &j.levers)),
+        Format::Json => {
+            // JSON shows NaN as null: the table of the same numbers is checked instead.
+            super::finite_only(&human(scene, o, &j.levers))?;
+            let mut v = json(scene, o, &j.levers);
+            if !j.files.is_empty() {
+                let worst = j.worst_file().map(|p| p.display().to_string());
+                v["worst_file"] = json!(worst);
+                v["files"] = json!(j.files);
+                v["warnings"] = json!(j.warnings);
+            }
+            format!("{v:#}\n")
+        }
+        Format::Csv => {
+            let file = scene.file.clone().unwrap_or_else(|| "scene".into());
+            batch::records_csv(&[batch::Record::judged(&file, j, 0.0)])?
+        }
+    })
+}
+
 /// The JSON object (module docs).
-pub fn json(scene: &Scene, o: &StackOutcome) -> Value {
+pub fn json(scene: &Scene, o: &StackOutcome, levers: &[Lever]) -> Value {
     let c = &o.contact.top;
     let bottom = o.interfaces.last().expect("a stack has an interface");
     let design = scene.stack_design();
@@ -49,7 +80,7 @@ pub fn json(scene: &Scene, o: &StackOutcome) -> Value {
     put_min_thickness(&mut m, o.min_thickness.as_ref());
     m.insert(
         "governing_check".into(),
-        json!(governing(o).map(|c| c.result.kind.name())),
+        json!(o.governing().map(|c| c.result.kind.name())),
     );
     let interfaces: Vec<Value> = o
         .interfaces
@@ -81,8 +112,7 @@ pub fn json(scene: &Scene, o: &StackOutcome) -> Value {
     m.insert("low_octave_share".into(), json!(c.low_octave_share));
     m.insert("h_rms_m".into(), json!(o.h_rms));
     m.insert("rms_slope".into(), json!(o.rms_slope));
-    // What alone would make a failing stack pass is not searched for stacks (a warning says so).
-    m.insert("levers".into(), json!([]));
+    m.insert("levers".into(), json!(levers));
     m.insert("warnings".into(), json!(o.warnings));
     m.insert(
         "scene".into(),
@@ -108,7 +138,7 @@ fn pm_mpa(e: &Estimate) -> String {
 
 /// The human report: the layers, the contact, every interface, the checks, the verdict; in the
 /// units of every table (MPa, µm) and at most [`super::WIDTH`] columns.
-pub fn human(scene: &Scene, o: &StackOutcome) -> String {
+pub fn human(scene: &Scene, o: &StackOutcome, levers: &[Lever]) -> String {
     let c = &o.contact.top;
     let mut out = String::new();
     let mut layers = table(&["layer", "E", "ν", "thickness", "bond to below"]);
@@ -200,11 +230,7 @@ pub fn human(scene: &Scene, o: &StackOutcome) -> String {
         ]);
     }
     out += &format!("{k}\n");
-    for w in &o.warnings {
-        out += &wrap(&format!("warning: {w}"));
-        out.push('\n');
-    }
-    let governing = governing(o);
+    let governing = o.governing();
     out += &format!(
         "verdict: {}{}\n",
         if o.pass { "PASS" } else { "FAIL" },
@@ -217,14 +243,16 @@ pub fn human(scene: &Scene, o: &StackOutcome) -> String {
             ))
             .unwrap_or_default()
     );
+    if !levers.is_empty() {
+        out += "what alone would make it pass:\n";
+        for l in levers {
+            out += &wrap(&format!("  - {}", super::html::lever_text(l)));
+            out.push('\n');
+        }
+    }
+    for w in &o.warnings {
+        out += &wrap(&format!("warning: {w}"));
+        out.push('\n');
+    }
     out
-}
-
-/// The check with the least margin (a check with no margin, nothing passing, counts least).
-fn governing(o: &StackOutcome) -> Option<&StackCheck> {
-    o.checks.iter().min_by(|a, b| {
-        let ma = a.result.margin.unwrap_or(f64::NEG_INFINITY);
-        let mb = b.result.margin.unwrap_or(f64::NEG_INFINITY);
-        ma.total_cmp(&mb)
-    })
 }

@@ -22,7 +22,7 @@ fn out(args: &[&str]) -> std::process::Output {
 }
 
 /// A CSV text as its header and rows (comment lines `#` skipped).
-fn parse_csv(text: &[u8]) -> (Vec<String>, Vec<Vec<String>>) {
+pub(crate) fn parse_csv(text: &[u8]) -> (Vec<String>, Vec<Vec<String>>) {
     let mut r = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
         .from_reader(text);
@@ -36,7 +36,7 @@ fn parse_csv(text: &[u8]) -> (Vec<String>, Vec<Vec<String>>) {
 
 /// A CSV cell equals a JSON value: empty is null, numbers equal as f64 (bit for bit), text and
 /// booleans as written.
-fn same(cell: &str, v: &Value, what: &str) {
+pub(crate) fn same(cell: &str, v: &Value, what: &str) {
     match v {
         Value::Null => assert_eq!(cell, "", "{what}"),
         Value::Number(n) => {
@@ -56,7 +56,7 @@ fn same(cell: &str, v: &Value, what: &str) {
 /// A batch record (or a check's JSON) flattened the way the CSV row is: scalars as they are,
 /// each check to `<check>_value`, `_limit`, `_utilisation`, `_margin`, `_pass`, each lever to
 /// `lever_<name>`, warnings joined by " | ".
-fn flatten(record: &Value) -> BTreeMap<String, Value> {
+pub(crate) fn flatten(record: &Value) -> BTreeMap<String, Value> {
     let mut m = BTreeMap::new();
     for (k, v) in record.as_object().unwrap() {
         match k.as_str() {

@@ -446,7 +446,7 @@ fn check_scene(text: &str) -> Result<(), TestCaseError> {
     }
     match judge(&scene, None) {
         Ok(j) => {
-            let o = &j.outcome;
+            let o = j.outcome.film().expect("the fuzzed scenes are films");
             prop_assert!(o.evaluation.contact.area_fraction.value.is_finite());
             for c in &o.checks {
                 prop_assert!(c.value.value.is_finite(), "{c:?}");

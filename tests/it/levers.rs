@@ -102,7 +102,7 @@ fn lighter_load_or_smoother_surface_alone_make_a_weak_bond_pass() {
 
 /// The spectrum with its lowest octave [q_L, 2 q_L] scaled by k, tabulated densely (the
 /// paper's spectrum is a power law, exact in log-log interpolation).
-fn octave_scaled(s: &Spectrum, k: f64) -> Spectrum {
+pub(crate) fn octave_scaled(s: &Spectrum, k: f64) -> Spectrum {
     let (lo, hi) = s.support();
     let mut q: Vec<f64> = (0..=600)
         .map(|i| lo * (hi / lo).powf(i as f64 / 600.0))

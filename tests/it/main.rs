@@ -35,6 +35,7 @@ mod report_browser;
 mod schema;
 mod sliding;
 mod stack;
+mod stack_outputs;
 mod stack_scene;
 mod tail;
 mod tangential;
