@@ -111,3 +111,47 @@ fn the_report_renders_with_its_plots_axes_and_labels() {
     let share = ink(&png);
     assert!(share > 0.02, "the screenshot is almost blank ({share})");
 }
+
+/// A layer stack's report renders too: its interface table (every interface by name) and its
+/// checks with their places are on the page, and the screenshot is not blank.
+#[test]
+fn a_stack_report_renders_with_its_interfaces() {
+    let Some(browser) = chromium() else {
+        assert!(
+            std::env::var_os("COATCHECK_REQUIRE_CHROMIUM").is_none(),
+            "Chromium is required here (COATCHECK_REQUIRE_CHROMIUM) but not found"
+        );
+        eprintln!("skipped: no Chromium on this machine");
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let html = dir.path().join("stack.html");
+    let o = run(&[
+        "check",
+        "examples/rubber-epoxy-primer-steel.toml",
+        "--report",
+        html.to_str().unwrap(),
+    ]);
+    assert!(
+        o.status.code().is_some_and(|c| c <= 1),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let page = std::fs::read_to_string(&html).unwrap();
+    for want in [
+        "Interfaces (Persson",
+        "τ_peak [MPa]",
+        "<td>rubber</td>",
+        "<td>primer</td>",
+        "bond-shear at rubber",
+        "bond-shear at primer",
+        "substrate-yield at substrate",
+        "Roughness power spectrum",
+    ] {
+        assert!(page.contains(want), "the page lacks '{want}'");
+    }
+    let png = dir.path().join("stack.png");
+    screenshot(browser, &html, &png, (1000, 3000));
+    let share = ink(&png);
+    assert!(share > 0.02, "the screenshot is almost blank ({share})");
+}
