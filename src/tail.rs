@@ -5,6 +5,7 @@
 //! - [`ShearVector::ln_exceedance`] gives ln P(|τ| > R) with its absolute error (the relative
 //!   error of P) and the slope d ln P/dR, down to P ≈ e^{−700} and beyond (no underflow: every
 //!   step is in logarithms); [`ShearVector::exceedance`] is its exponential.
+//! - [`ShearVector::density`] is the density of |τ|, −dP/dR.
 //! - [`ShearVector::peak`] solves P(|τ| > τ*) = ε for ε in (0, ½), to 1e−12 relative (the issue
 //!   asks for 1e−10), by Newton's method on ln P with a bracket.
 //!
@@ -108,6 +109,18 @@ impl ShearVector {
         let l = self.ln_exceedance(level).ln_p;
         let p = l.value.exp();
         Estimate::new(p, p * l.err.exp_m1() + 4.0 * EPS * p, l.status)
+    }
+
+    /// The probability density of |τ| at `level` ≥ 0 (1/Pa): −dP/dR from [`Self::ln_exceedance`]
+    /// (the θ-integral of the module doc), 0 where P underflows as in [`Self::exceedance`], and
+    /// 0 for the constant |τ| = m (sx = sy = 0, a point mass).
+    pub fn density(&self, level: f64) -> f64 {
+        let s = self.sx.max(self.sy);
+        if s == 0.0 || (level > self.mean && (level - self.mean) / s > UNDERFLOW_GAP) {
+            return 0.0;
+        }
+        let l = self.ln_exceedance(level);
+        -l.slope * l.ln_p.value.exp()
     }
 
     /// ln P(|τ| > level) for level ≥ 0, and its slope in the level.

@@ -37,6 +37,8 @@ use crate::topography::HeightMap;
 use crate::topography::spectrum::{PsdOptions, map_psd};
 use serde::Serialize;
 
+pub mod sliding;
+
 /// Smallest side (pixels) for which a half-resolution solve is made.
 const MIN_SIDE_FOR_HALF: usize = 32;
 
@@ -76,7 +78,7 @@ pub struct Verification {
     pub sigma_rms_top: Estimate,
     /// Rms deviation of σ_n at z = d (Pa).
     pub sigma_rms_interface: Estimate,
-    /// Rms of |τ| at z = d (Pa).
+    /// Rms of |τ| at z = d (Pa); under sliding, of the static (pressure-driven) shear.
     pub tau_rms_interface: Estimate,
     /// ε-level of |τ| at z = d.
     pub tau_peak: Level,
@@ -87,6 +89,9 @@ pub struct Verification {
     /// The enabled stress checks.
     pub checks: Vec<ExactCheck>,
     pub pass: bool,
+    /// Under sliding friction: the interface shear vector ([`sliding`]). The levels, σ_rms(d)
+    /// and the bond exceedance above are then those of the total fields.
+    pub sliding: Option<sliding::SlidingVerification>,
     /// The full-resolution solve.
     pub convergence: Convergence,
     /// Wall time of both solves (s).
@@ -106,6 +111,8 @@ struct Solved {
     bond_fraction: f64,
     resolved: bool,
     convergence: Convergence,
+    /// Under sliding: the shear vector's summary and the |τ| statistics.
+    sliding: Option<(sliding::ExactSliding, bem::FieldStats)>,
 }
 
 /// The nearest-rank (1 − ε) quantile of `values` (reordered) and whether ε ≥ 1/N.
@@ -154,6 +161,14 @@ fn solve_one(
 ) -> Result<Solved, Error> {
     let p0 = design.pressure;
     let (sol, fields) = solve(surface, stack, p0, settings)?;
+    let tau_rms = fields.shear_stats.rms;
+    let (fields, sliding) = match sliding::with_friction(&sol, stack, &fields, design.friction)? {
+        Some((total, summary)) => {
+            let stats = total.shear_stats.clone();
+            (total, Some((summary, stats)))
+        }
+        None => (fields, None),
+    };
     let eps = design.criteria.epsilon;
     let mut tau: Vec<f64> = (0..fields.shear_x.len())
         .map(|i| fields.shear_magnitude(i))
@@ -167,12 +182,13 @@ fn solve_one(
         mean_pressure: p0 / sol.area_fraction.value,
         sigma_top: sol.sigma_rms_top,
         sigma_int: fields.normal_stats.rms_dev,
-        tau_rms: fields.shear_stats.rms,
+        tau_rms,
         tau_level,
         sigma_level,
         bond_fraction: fields.shear_fraction_above(design.bond_strength),
         resolved,
         convergence: sol.convergence,
+        sliding,
     })
 }
 
@@ -282,6 +298,10 @@ pub fn verify(
         bond_exceedance: est(|s| s.bond_fraction, 0.0),
         checks,
         pass,
+        sliding: fine.sliding.as_ref().map(|(s, t)| {
+            let half = coarse.as_ref().and_then(|c| c.sliding.as_ref());
+            sliding::SlidingVerification::of((s, t), half.map(|(s, t)| (s, t)))
+        }),
         convergence: fine.convergence,
         seconds: started.elapsed().as_secs_f64(),
     })
@@ -343,6 +363,13 @@ pub fn persson(
     p0: f64,
     settings: Settings,
 ) -> Result<Contact, Error> {
+    let engine = Engine::new(&map_spectrum(map)?, settings);
+    engine.evaluate(stack, p0, Request::all())
+}
+
+/// The map's own spectrum as Persson's theory sees it (periodic, no window, down to the
+/// Nyquist limit).
+fn map_spectrum(map: &HeightMap) -> Result<Spectrum, Error> {
     let psd = map_psd(
         map,
         &PsdOptions {
@@ -350,8 +377,7 @@ pub fn persson(
             ..PsdOptions::default()
         },
     )?;
-    let engine = Engine::new(&Spectrum::Tabulated(psd.c2d), settings);
-    engine.evaluate(stack, p0, Request::all())
+    Ok(Spectrum::Tabulated(psd.c2d))
 }
 
 /// Solve the contact on `map` (one period of a periodic surface) at nominal pressure `p0` and
@@ -474,7 +500,7 @@ pub fn check_rows(ev: &Evaluation, v: &Verification) -> Vec<CheckRow> {
         persson,
         exact,
     };
-    vec![
+    let mut rows = vec![
         row(
             "A/A0",
             "area_fraction",
@@ -522,7 +548,11 @@ pub fn check_rows(ev: &Evaluation, v: &Verification) -> Vec<CheckRow> {
             }),
             v.bond_exceedance,
         ),
-    ]
+    ];
+    if let Some(s) = &v.sliding {
+        rows.extend(sliding::check_rows(ev, s));
+    }
+    rows
 }
 
 #[cfg(test)]

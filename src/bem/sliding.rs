@@ -5,8 +5,10 @@
 //! friction traction ([`crate::layer::tangential`]),
 //! σ_xz: g_t cos²φ + h sin²φ, σ_yz: (g_t − h) cos φ sin φ, both in phase, and σ_zz (tension):
 //! f_t cos φ in quadrature (cos(k·r) → sin(k·r), the multiplier −i on e^{ik·r}). The q = 0 mode
-//! (the mean friction μ p0) passes unchanged to σ_xz (g_t = h = 1). The odd σ_zz operator is set
-//! to zero on the x Nyquist column, as the static shear is ([`super::interface_fields_with`]).
+//! (the mean friction μ p0) passes unchanged to σ_xz (g_t = h = 1). The σ_zz operator (odd in q_x)
+//! is set to zero on the x Nyquist column and the σ_yz one (odd in q_x and in q_y) on both Nyquist
+//! lines, as the static shear is ([`super::interface_fields_with`]): a real field's Nyquist mode
+//! cannot carry an odd operator.
 
 use super::fft::Fft2;
 use super::wavenumbers;
@@ -66,13 +68,21 @@ pub fn friction_fields(
     });
     let scale = mu / n as f64;
     let nyq_x = nx.is_multiple_of(2).then_some(nx / 2);
+    let nyq_y = ny.is_multiple_of(2).then_some(ny / 2);
     let mut plan = Fft2::new(nx, ny);
     let mut out = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
     for (j, field) in out.iter_mut().enumerate() {
         plan.filter(pressure, field, |kx, col| {
-            for (c, m) in col.iter_mut().zip(&mult[kx * ny..(kx + 1) * ny]) {
+            for (ky, (c, m)) in col
+                .iter_mut()
+                .zip(&mult[kx * ny..(kx + 1) * ny])
+                .enumerate()
+            {
                 *c *= match j {
-                    0 | 1 => Complex64::new(m[j] * scale, 0.0),
+                    0 => Complex64::new(m[0] * scale, 0.0),
+                    // (g_t − h) cos φ sin φ is odd in q_x and in q_y.
+                    1 if Some(kx) == nyq_x || Some(ky) == nyq_y => Complex64::new(0.0, 0.0),
+                    1 => Complex64::new(m[1] * scale, 0.0),
                     // Compression positive: −σ_zz, and −i on e^{ik·r}: +i.
                     _ if Some(kx) == nyq_x => Complex64::new(0.0, 0.0),
                     _ => Complex64::new(0.0, m[2] * scale),

@@ -12,12 +12,13 @@ use coatcheck::layer::{Bilayer, Elastic, Stack};
 use coatcheck::prec::Settings;
 use coatcheck::report::{
     self,
-    verify::{VerifyInputs, verify_json, verify_table, write_fields},
+    verify::{VerifyInputs, sliding_json, sliding_note, verify_json, verify_table, write_fields},
 };
 use coatcheck::scene::Key;
 use coatcheck::topography::io::{MapOptions, read_height_map};
 use coatcheck::units::{Dim, parse_quantity};
 use coatcheck::verify::compare;
+use coatcheck::verify::sliding::compare_sliding;
 use std::path::PathBuf;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -61,7 +62,8 @@ pub struct VerifyArgs {
     /// Interface bond strength in shear: reports the area fraction where |τ| exceeds it.
     #[arg(long, allow_hyphen_values = true)]
     pub bond_strength: Option<String>,
-    /// Write the fields (x, y, height, pressure, gap, interface σ_n, τ_x, τ_y, |τ|) as CSV.
+    /// Write the fields (x, y, height, pressure, gap, interface σ_n, τ_x, τ_y, |τ|) as CSV
+    /// (with --friction, the interface stresses include the friction-driven part).
     #[arg(long)]
     pub fields: Option<PathBuf>,
     #[arg(long, value_enum, default_value = "table")]
@@ -76,6 +78,10 @@ pub struct VerifyArgs {
     /// Relative tolerance of Persson's contact integrals (default 1e-8; 1e-13 to 1e-2).
     #[arg(long)]
     pub rtol: Option<String>,
+    /// Sliding friction coefficient mu: the traction mu p(x) along x is applied to the solved
+    /// (frictionless) pressure, and the interface shear vector is compared with Persson's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub friction: Option<String>,
 }
 
 /// The largest `--gap-tol`: the solver's gaps and penetrations are then within 1% of h_rms; a
@@ -145,13 +151,27 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
         .map(|s| Key::Rtol.parse_flag("--rtol", s))
         .transpose()?
         .unwrap_or(coatcheck::prec::DEFAULT_RTOL);
+    let mu = a
+        .friction
+        .as_deref()
+        .map(|s| Key::Friction.parse_flag("--friction", s))
+        .transpose()?
+        .unwrap_or(0.0);
     let map = read_height_map(&a.map, &opts)?;
     let stack = Stack::new(Bilayer::new(film, substrate), d)?;
     let settings = BemSettings {
         gap_tol: a.gap_tol,
         max_iter: a.max_iter,
     };
-    let c = compare(&map, &stack, p0, &settings, Settings { rtol }, bond)?;
+    let (c, sliding) = if mu > 0.0 {
+        let s = compare_sliding(&map, &stack, (p0, mu), &settings, Settings { rtol }, bond)?;
+        (s.comparison, Some((s.exact, s.persson)))
+    } else {
+        (
+            compare(&map, &stack, p0, &settings, Settings { rtol }, bond)?,
+            None,
+        )
+    };
     if let Some(path) = &a.fields {
         write_fields(path, &c.surface, &c.solution, &c.fields)?;
     }
@@ -161,16 +181,22 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
         p0,
         bond,
     };
-    let table = verify_table(&inputs, &c);
+    let mut table = verify_table(&inputs, &c);
+    if let Some(s) = &sliding {
+        table += &sliding_note(&s.0, &s.1);
+    }
     report::stdout(&match a.format {
         FormatArg::Table => table,
         FormatArg::Json => {
             // JSON shows NaN as null: the table of the same numbers is checked instead.
             report::finite_only(&table)?;
+            let mut v = verify_json(&inputs, &c);
+            if let (Some(s), Some(o)) = (&sliding, v.as_object_mut()) {
+                o.insert("sliding".into(), sliding_json(&s.0, &s.1));
+            }
             format!(
                 "{}\n",
-                serde_json::to_string_pretty(&verify_json(&inputs, &c))
-                    .expect("a JSON value serialises")
+                serde_json::to_string_pretty(&v).expect("a JSON value serialises")
             )
         }
     })?;

@@ -8,6 +8,8 @@
 //! - the spectrum C(q) with the band used and the lowest octave [q_L, 2 q_L] shaded;
 //! - the interface shear and normal-stress exceedance P(|τ| > t), P(σ > s) (notes.md,
 //!   "Distributions"), with ε and the limits marked;
+//! - under the vector rule (sliding friction) the shear's exceedance and density for the vector
+//!   (μp0 + X, Y), with the bond strength marked (`html/sliding.rs`);
 //! - utilisation (value/limit) of each stress check against thickness, with the limit 1, d_min and
 //!   the design thickness marked.
 
@@ -22,6 +24,8 @@ use crate::psd::Spectrum;
 use crate::report::plot::{Band, Extras, Legend, Marker, svg};
 
 /// Points per plotted curve.
+mod sliding;
+
 const POINTS: usize = 121;
 
 /// A figure ready for the page: caption and SVG text.
@@ -168,7 +172,8 @@ pub fn spectrum_plot(spectrum: &Spectrum) -> Result<Plot, Error> {
     })
 }
 
-/// Exceedance curves of the interface shear and normal stress, with ε and the limits marked.
+/// Exceedance curves of the interface shear and normal stress, with ε and the limits marked;
+/// under the vector rule the shear's are the vector's (`html/sliding.rs`), with its density.
 pub fn stress_plots(checker: &Checker, outcome: &Outcome) -> Result<Vec<Plot>, Error> {
     let design = checker.design();
     let eps = design.criteria.epsilon;
@@ -182,7 +187,16 @@ pub fn stress_plots(checker: &Checker, outcome: &Outcome) -> Result<Vec<Plot>, E
             .find(|ch| ch.kind == kind)
             .and_then(|ch| ch.limit)
     };
-    if let (Some(rms), Some(peak)) = (c.tau_rms_interface, ev.tau_peak) {
+    if let (Some(s), Some(peak)) = (&ev.sliding, ev.tau_peak) {
+        let limit = limit_of(CheckKind::BondShear);
+        plots.extend(sliding::shear_plots(
+            s,
+            eps,
+            peak.value,
+            limit,
+            design.bond_strength,
+        )?);
+    } else if let (Some(rms), Some(peak)) = (c.tau_rms_interface, ev.tau_peak) {
         let limit = limit_of(CheckKind::BondShear);
         let t = levels(rms.value, peak.value, limit);
         let p = t.iter().map(|&t| tau_exceedance(rms.value, t)).collect();

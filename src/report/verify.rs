@@ -5,8 +5,10 @@
 use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
 use crate::bem::{BemSolution, Convergence, FieldStats, InterfaceFields, Surface};
 use crate::check::Evaluation;
+use crate::contact::SlidingShear;
 use crate::error::Error;
 use crate::layer::Stack;
+use crate::verify::sliding::ExactSliding;
 use crate::verify::{Comparison, Verification, check_rows};
 use serde_json::{Value, json};
 use std::io::Write;
@@ -115,6 +117,42 @@ pub fn verify_table(i: &VerifyInputs, c: &Comparison) -> String {
             sol.area_fraction.err
         ))
     )
+}
+
+/// The note under `verify --friction`'s tables: the uncoupled approximation and the vector rule.
+pub fn sliding_note(e: &ExactSliding, p: &SlidingShear) -> String {
+    let mut out = wrap(&format!(
+        "sliding friction mu = {}: the traction mu p(x) along x is applied to the solved \
+         frictionless pressure (uncoupled approximation: the friction does not change the \
+         contact; max mu |c|/S over the map's wavenumbers = {}). The interface fields, sigma_rms \
+         interface and |tau| include the friction-driven part; Persson's |tau| quantiles are \
+         those of the vector (mu p0 + X, Y), X and Y independent Gaussians with the tau_x and \
+         tau_y rms.",
+        e.friction,
+        p.coupling.map_or("-".into(), |c| sig(c, 3))
+    ));
+    out.push('\n');
+    out
+}
+
+/// `verify --friction`'s `sliding` object: the friction, the coupling the approximation
+/// neglects, and the shear vector's mean and rms, exact beside Persson's (Pa).
+pub fn sliding_json(e: &ExactSliding, p: &SlidingShear) -> Value {
+    json!({
+        "friction": e.friction,
+        "approximation": "uncoupled",
+        "friction_coupling": p.coupling,
+        "mean_interface_shear_pa": e.mean,
+        "persson_mean_interface_shear_pa": p.mean.value,
+        "tau_x_rms_interface_pa": e.tau_x_rms,
+        "persson_tau_x_rms_interface_pa": p.tau_x_rms.value,
+        "persson_tau_x_rms_interface_pa_err": p.tau_x_rms.err,
+        "tau_y_rms_interface_pa": e.tau_y_rms,
+        "persson_tau_y_rms_interface_pa": p.tau_y_rms.value,
+        "persson_tau_y_rms_interface_pa_err": p.tau_y_rms.err,
+        "sigma_rms_interface_pa": e.sigma_rms_interface,
+        "tau_rms_static_pa": e.static_tau_rms,
+    })
 }
 
 /// The boundary-element solver's convergence (lengths in m), as `verify` and `check --verify`
@@ -259,6 +297,16 @@ pub fn check_table(map: &Path, ev: &Evaluation, v: &Verification) -> String {
         ]);
     }
     out += &format!("{c}\n");
+    if let Some(s) = &v.sliding {
+        out += &wrap(&format!(
+            "sliding friction mu = {}: the exact fields add the traction mu p(x) along x on the \
+             solved frictionless pressure (uncoupled approximation); the exact levels, sigma_rms \
+             interface and P(|tau| > bond strength) are of the total fields, tau_rms interface is \
+             the pressure-driven shear's; Persson's |tau| quantiles are the vector rule's.",
+            s.friction
+        ));
+        out.push('\n');
+    }
     out += &wrap(&format!(
         "exact verdict: {}; with --verify the design passes only if both Persson's and the exact \
          checks pass (min-thickness is judged by Persson's theory only)",
@@ -282,6 +330,10 @@ pub fn check_json(map: &Path, ev: &Evaluation, v: &Verification) -> Value {
         m.insert(format!("persson_{key}"), json!(p.map(|p| p.value)));
     }
     m.insert("peaks_resolved".into(), json!(v.tau_peak.resolved));
+    if let Some(s) = &v.sliding {
+        m.insert("friction".into(), json!(s.friction));
+        m.insert("approximation".into(), json!("uncoupled"));
+    }
     m.insert(
         "checks".into(),
         json!(

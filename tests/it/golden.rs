@@ -9,7 +9,7 @@ use std::process::Command;
 
 /// Timings (`time="0.012"` in JUnit, `(0.03 s)` in batch summaries, `in 0.02 s` in solver status, `"seconds": 0.01` in JSON
 /// and the last column of a CSV whose header ends in `seconds`) replaced by `#`.
-fn mask_timings(text: &str) -> String {
+pub(crate) fn mask_timings(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     let mut seconds_column = false;
     for line in text.split_inclusive('\n') {

@@ -42,3 +42,4 @@ mod tangential;
 mod topography;
 mod validity;
 mod verify_check;
+mod verify_sliding;

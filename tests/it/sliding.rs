@@ -289,6 +289,20 @@ fn paper_scene_vector_peaks_match_the_high_precision_tail() {
     }
 }
 
+/// d_min under the vector rule without friction (`--shear-tail vector` at μ = 0, the Rayleigh
+/// tail of the static shear) against the same dense scan: the search is the one of the
+/// half-normal rule with another peak, and must be right for it too.
+#[test]
+fn d_min_under_the_vector_rule_without_friction_matches_a_dense_scan() {
+    use crate::check::{assert_d_min_matches_brute_force, checker, paper_design};
+    use coatcheck::check::Checks;
+    for bond in [1e6, 2e6] {
+        let mut design = paper_design(Checks::all(), bond, 2.5e8);
+        design.criteria.shear_tail = Some(coatcheck::check::ShearTail::Vector);
+        assert_d_min_matches_brute_force(&checker(design), 100.0);
+    }
+}
+
 /// d_min under sliding (vector rule, bond shear and substrate yield) against a dense
 /// brute-force scan of the full check (100 points per decade): in the scan's bracket, passing
 /// just above and failing just below, and never thinner than the static d_min (friction only
