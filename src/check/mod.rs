@@ -31,7 +31,7 @@
 //! than the film thickness (the interface stress comes from wavelengths of the order of d and
 //! longer, which were not measured).
 
-mod checker;
+pub(crate) mod checker;
 pub mod criteria;
 pub mod itp;
 pub mod levers;

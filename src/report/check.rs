@@ -413,7 +413,6 @@ pub fn human(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> String {
 /// CSV is the batch's shape, one row ([`batch::records_csv`]).
 pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
     let (scene, outcome) = (&j.scene, &j.outcome);
-    let ev = &outcome.evaluation;
     let verdict = if j.pass() { "pass" } else { "fail" };
     let several = !j.files.is_empty();
     Ok(match format {
@@ -424,7 +423,7 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
                 human(scene, outcome, &j.levers)
             );
             if let Some(x) = &j.exact {
-                t += &format!("\n{}", verify::check_table(&x.map, ev, &x.verification));
+                t += &format!("\n{}", verify::check_table(x, outcome));
             }
             t
         }
@@ -439,10 +438,8 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
                 v["warnings"] = json!(j.warnings);
             }
             if let (Some(x), Some(o)) = (&j.exact, v.as_object_mut()) {
-                o.insert(
-                    "verify".into(),
-                    verify::check_json(&x.map, ev, &x.verification),
-                );
+                o.insert("verify".into(), verify::check_json(x, outcome));
+                o.insert("exact".into(), verify::exact_json(x, outcome));
                 o.insert("verdict_with_verify".into(), verdict.into());
             }
             format!("{v:#}\n")
