@@ -17,6 +17,7 @@ pub mod cheb;
 pub mod check;
 pub mod contact;
 pub mod error;
+pub mod exact;
 pub mod figures;
 pub mod instrument;
 pub mod layer;

@@ -1,8 +1,9 @@
 //! From a scene to its verdict, the one road every `check` takes (one scene, a batch,
 //! `--verify`, a film or a layer stack): the spectrum of each roughness file, a [`Checker`]
 //! (a film) or a [`StackChecker`] (`[[layer]]` tables) on it, the outcome at the scene's
-//! thickness, optionally the exact check on the height map ([`crate::verify`], films), and the
-//! worst file when the scene lists several. No physics of its own (paper App. B, eqs. B8–B12
+//! thickness, optionally the exact check on the height map, or on realisations of the scene's
+//! spectrum when it has no map ([`crate::exact`], films), and the worst file when the scene
+//! lists several. No physics of its own (paper App. B, eqs. B8–B12
 //! through [`crate::check`]).
 //!
 //! The worst file: a failing file before a passing one, then the smallest margin of the
@@ -14,10 +15,12 @@ use crate::check::stack::{StackChecker, StackOutcome};
 use crate::check::stack_levers::stack_levers;
 use crate::check::{CheckKind, CheckResult, Checker, MinThickness, Outcome};
 use crate::error::Error;
+use crate::exact::min_thickness::ExactMinThickness;
+use crate::exact::{ExactOptions, Realisations, on_realisations, on_surface};
 use crate::scene::{RoughnessSource, Scene};
 use crate::topography::io::{HeightKind, MapOptions, read_height_map, sniff};
 use crate::topography::plausible::{edge_mismatch_map, periodic_warning};
-use crate::verify::{Verification, verify};
+use crate::verify::Verification;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -32,11 +35,19 @@ pub struct FileVerdict {
     pub margin: Option<f64>,
 }
 
-/// The exact check of `check --verify`: the height map and what the boundary elements found.
+/// The exact check of `check --verify`: the height map (or the spectrum file of the
+/// realisations) and what the boundary elements found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Exact {
+    /// The height map, or the spectrum file of the realisations (`model` for a model spectrum).
     pub map: PathBuf,
+    /// The stress checks and, when min-thickness is enabled, the exact d_min's check (the
+    /// means over the realisations when there are realisations).
     pub verification: Verification,
+    /// The exact minimum thickness, when min-thickness is enabled.
+    pub min_thickness: Option<ExactMinThickness>,
+    /// The realisations of a scene without a height map.
+    pub realisations: Option<Realisations>,
 }
 
 /// The outcome of a film or of a layer stack.
@@ -221,8 +232,21 @@ fn run_one(scene: &Scene) -> Result<(Verdict, Vec<String>), Error> {
 }
 
 /// Judge a scene at its thickness on each of its roughness files and report the worst; with
-/// `exact`, also solve the contact on the scene's height map and judge the exact fields.
+/// `exact`, also solve the contact on the scene's height map and judge the exact fields (the
+/// default [`ExactOptions`] with these solver settings).
 pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error> {
+    let opts = exact.map(|&bem| ExactOptions {
+        bem,
+        ..ExactOptions::default()
+    });
+    judge_exact(scene, opts.as_ref())
+}
+
+/// [`judge`] with the exact check's options: on the height map, or on realisations of the
+/// spectrum of a scene without one ([`crate::exact`]).
+/// [`judge`] with the exact check's options: on the height map, or on realisations of the
+/// spectrum of a scene without one ([`crate::exact`]).
+pub fn judge_exact(scene: &Scene, exact: Option<&ExactOptions>) -> Result<Judged, Error> {
     if exact.is_some() && scene.is_stack() {
         return Err(Error::Value {
             origin: "--verify".into(),
@@ -281,13 +305,9 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
     outcome.warnings_mut().splice(0..0, own_reads);
     let mut exact_warnings = Vec::new();
     let exact = exact
-        .map(|settings| {
-            let (map, surface, mismatch) = scene_map(&scene)?;
-            exact_warnings.extend(periodic_warning(&map, mismatch));
-            let design = scene.design();
-            let thickness = outcome.film().expect("a stack is refused above").thickness;
-            let verification = verify(&surface, &design, thickness, settings)?;
-            Ok::<_, Error>(Exact { map, verification })
+        .map(|opts| {
+            let film = outcome.film().expect("a stack is refused above");
+            exact_check(&scene, film, film.thickness, opts, &mut exact_warnings)
         })
         .transpose()?;
     outcome
@@ -316,23 +336,59 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
     })
 }
 
-/// The map behind `check --verify`: the scene's height file, which must be a height map, with
-/// its edge mismatch (it is solved as one period of a periodic surface).
-fn scene_map(scene: &Scene) -> Result<(PathBuf, Surface, f64), Error> {
-    let RoughnessSource::Profile { path } = &scene.roughness.source else {
-        return Err(Error::Value {
-            origin: scene
-                .file
-                .as_ref()
-                .map_or("--verify".to_string(), |p| p.display().to_string()),
-            msg: "--verify solves the contact on the measured surface: give the roughness as a \
-                  height map (roughness.profile or --profile), not as a spectrum or a model"
-                .into(),
+/// The exact check of `check --verify`: on the scene's height map, or on realisations of its
+/// spectrum when the roughness is a spectrum or a model.
+fn exact_check(
+    scene: &Scene,
+    outcome: &Outcome,
+    thickness: f64,
+    opts: &ExactOptions,
+    warnings: &mut Vec<String>,
+) -> Result<Exact, Error> {
+    let design = scene.design();
+    if let RoughnessSource::Profile { path } = &scene.roughness.source {
+        let (surface, mismatch) = scene_map(path)?;
+        warnings.extend(periodic_warning(path, mismatch));
+        let (verification, min_thickness) = on_surface(&surface, &design, thickness, &opts.bem)?;
+        return Ok(Exact {
+            map: path.clone(),
+            verification,
+            min_thickness,
+            realisations: None,
         });
-    };
+    }
+    let (spectrum, _) = scene.roughness.spectrum()?;
+    let (verification, min_thickness, realisations) =
+        on_realisations(&spectrum, &design, thickness, &outcome.evaluation, opts)?;
+    let share = realisations.grid.unresolved_slope_share;
+    if share > 0.0 {
+        warnings.push(format!(
+            "the realisations' {n} x {n} grid holds the spectrum up to q = {q:.4e} 1/m of \
+             {hi:.4e} 1/m: {pct:.3} % of the slope variance lies above it and is not in the \
+             exact solves (raise --realisation-grid)",
+            n = realisations.grid.n,
+            q = realisations.grid.q_nyquist,
+            hi = realisations.grid.q_high,
+            pct = 100.0 * share
+        ));
+    }
+    Ok(Exact {
+        map: scene
+            .roughness
+            .file()
+            .map_or_else(|| PathBuf::from("model"), Path::to_path_buf),
+        verification,
+        min_thickness,
+        realisations: Some(realisations),
+    })
+}
+
+/// The height map behind `check --verify` (it must be a height map, not line scans) with its
+/// edge mismatch (it is solved as one period of a periodic surface).
+fn scene_map(path: &Path) -> Result<(Surface, f64), Error> {
     if sniff(path)? == Some(HeightKind::Lines) {
         return Err(Error::Input {
-            path: path.clone(),
+            path: path.to_path_buf(),
             line: 1,
             msg: "--verify needs a height map (a matrix of heights), not line scans".into(),
         });
@@ -342,9 +398,5 @@ fn scene_map(scene: &Scene) -> Result<(PathBuf, Surface, f64), Error> {
         ..MapOptions::default()
     };
     let map = read_height_map(path, &opts)?;
-    Ok((
-        path.clone(),
-        Surface::from_height_map(&map)?,
-        edge_mismatch_map(&map),
-    ))
+    Ok((Surface::from_height_map(&map)?, edge_mismatch_map(&map)))
 }

@@ -21,10 +21,11 @@
 //! number is therefore also computed on the map sampled at every second pixel (both directions,
 //! the same surface at half the resolution), and the difference of the two solutions is
 //! reported as the error of the full-resolution value (A/A0 converges at first order in the
-//! pixel size, see `examples/bench_bem.rs`, so the difference over-estimates the error of the
-//! finer grid). Maps with fewer than 32 pixels along a side get no half-resolution solve and a
-//! NaN error. The map is one period of a periodic surface, as `coatcheck verify` treats it.
-//! The minimum thickness is not verified (it would need a solve per thickness).
+//! pixel size, see `examples/bench_bem.rs`, where the difference then equals the error of the
+//! finer grid; before that regime it can under-estimate it: on a 64² self-affine test map the
+//! difference to its 128² parent was 5.7× the estimate, `tests/it/exact.rs`). Maps with fewer
+//! than 32 pixels along a side get no half-resolution solve and a NaN error. The map is one period of a periodic surface, as `coatcheck verify` treats it.
+//! The minimum thickness on the map is searched by [`crate::exact`] (a solve per thickness).
 
 use crate::bem::{self, BemSettings, BemSolution, Convergence, InterfaceFields, Surface};
 use crate::check::{CheckKind, Design, Evaluation, criteria};
@@ -99,20 +100,22 @@ pub struct Verification {
 }
 
 /// The numbers of one solve.
-struct Solved {
-    area: f64,
-    area_tol: f64,
-    mean_pressure: f64,
-    sigma_top: f64,
-    sigma_int: f64,
-    tau_rms: f64,
-    tau_level: f64,
-    sigma_level: f64,
-    bond_fraction: f64,
-    resolved: bool,
-    convergence: Convergence,
+pub(crate) struct Solved {
+    pub(crate) area: f64,
+    pub(crate) area_tol: f64,
+    pub(crate) mean_pressure: f64,
+    pub(crate) sigma_top: f64,
+    pub(crate) sigma_int: f64,
+    pub(crate) tau_rms: f64,
+    pub(crate) tau_level: f64,
+    pub(crate) sigma_level: f64,
+    pub(crate) bond_fraction: f64,
+    pub(crate) resolved: bool,
+    pub(crate) convergence: Convergence,
     /// Under sliding: the shear vector's summary and the |τ| statistics.
-    sliding: Option<(sliding::ExactSliding, bem::FieldStats)>,
+    pub(crate) sliding: Option<(sliding::ExactSliding, bem::FieldStats)>,
+    /// The solved contact pressure (Pa), to warm-start a neighbouring solve.
+    pub(crate) pressure: Vec<f64>,
 }
 
 /// The nearest-rank (1 − ε) quantile of `values` (reordered) and whether ε ≥ 1/N.
@@ -132,7 +135,21 @@ pub fn solve(
     p0: f64,
     settings: &BemSettings,
 ) -> Result<(BemSolution, InterfaceFields), Error> {
-    let sol = bem::solve(surface, stack, p0, settings)?;
+    solve_warm(surface, stack, p0, settings, None)
+}
+
+/// [`solve`], warm-started from the pressure field `start` when given ([`bem::solve_from`]).
+pub fn solve_warm(
+    surface: &Surface,
+    stack: &Stack,
+    p0: f64,
+    settings: &BemSettings,
+    start: Option<&[f64]>,
+) -> Result<(BemSolution, InterfaceFields), Error> {
+    let sol = match start {
+        Some(start) => bem::solve_from(surface, stack, p0, settings, start)?,
+        None => bem::solve(surface, stack, p0, settings)?,
+    };
     let c = &sol.convergence;
     if c.status != Termination::Converged {
         return Err(Error::Numerical {
@@ -153,14 +170,16 @@ pub fn solve(
     Ok((sol, fields))
 }
 
-fn solve_one(
+/// One solve of `design` on `stack` (warm-started from `start` when given) and its numbers.
+pub(crate) fn solve_one(
     surface: &Surface,
     stack: &Stack,
     design: &Design,
     settings: &BemSettings,
+    start: Option<&[f64]>,
 ) -> Result<Solved, Error> {
     let p0 = design.pressure;
-    let (sol, fields) = solve(surface, stack, p0, settings)?;
+    let (sol, fields) = solve_warm(surface, stack, p0, settings, start)?;
     let tau_rms = fields.shear_stats.rms;
     let (fields, sliding) = match sliding::with_friction(&sol, stack, &fields, design.friction)? {
         Some((total, summary)) => {
@@ -189,11 +208,12 @@ fn solve_one(
         resolved,
         convergence: sol.convergence,
         sliding,
+        pressure: sol.pressure,
     })
 }
 
 /// The surface sampled at every second pixel (same period, half the resolution).
-fn half(surface: &Surface) -> Option<Result<Surface, Error>> {
+pub(crate) fn half(surface: &Surface) -> Option<Result<Surface, Error>> {
     // A map with an odd side would lose its period; small maps have too few pixels to halve.
     let (nx, ny) = (surface.nx / 2, surface.ny / 2);
     if !surface.nx.is_multiple_of(2)
@@ -224,9 +244,9 @@ pub fn verify(
 ) -> Result<Verification, Error> {
     let started = std::time::Instant::now();
     let stack = Stack::new(design.layers, thickness)?;
-    let fine = solve_one(surface, &stack, design, settings)?;
+    let fine = solve_one(surface, &stack, design, settings, None)?;
     let coarse = half(surface)
-        .map(|s| solve_one(&s?, &stack, design, settings))
+        .map(|s| solve_one(&s?, &stack, design, settings, None))
         .transpose()?;
     let est = |f: fn(&Solved) -> f64, floor: f64| {
         let v = f(&fine);
@@ -247,6 +267,44 @@ pub fn verify(
         value: est(|s| s.sigma_level, 0.0),
         resolved: fine.resolved,
     };
+    let checks = exact_checks(
+        design,
+        tau_peak,
+        sigma_peak_interface,
+        mean_contact_pressure,
+    );
+    let pass = checks.iter().all(|c| c.pass);
+    Ok(Verification {
+        nx: surface.nx,
+        ny: surface.ny,
+        q_low_d: surface.q_low() * thickness,
+        area_fraction,
+        mean_contact_pressure,
+        sigma_rms_top: est(|s| s.sigma_top, 0.0),
+        sigma_rms_interface: est(|s| s.sigma_int, 0.0),
+        tau_rms_interface: est(|s| s.tau_rms, 0.0),
+        tau_peak,
+        sigma_peak_interface,
+        bond_exceedance: est(|s| s.bond_fraction, 0.0),
+        checks,
+        pass,
+        sliding: fine.sliding.as_ref().map(|(s, t)| {
+            let half = coarse.as_ref().and_then(|c| c.sliding.as_ref());
+            sliding::SlidingVerification::of((s, t), half.map(|(s, t)| (s, t)))
+        }),
+        convergence: fine.convergence,
+        seconds: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// The enabled stress checks judged on exact levels: bond-shear on the ε-level of |τ|,
+/// substrate-yield on the larger of the ε-level of σ_n and the mean contact pressure.
+pub(crate) fn exact_checks(
+    design: &Design,
+    tau_peak: Level,
+    sigma_peak_interface: Level,
+    mean_contact_pressure: Estimate,
+) -> Vec<ExactCheck> {
     let sf = design.criteria.safety_factor;
     let on = design.criteria.checks;
     let mut checks = Vec::new();
@@ -283,28 +341,7 @@ pub fn verify(
             resolved,
         );
     }
-    let pass = checks.iter().all(|c| c.pass);
-    Ok(Verification {
-        nx: surface.nx,
-        ny: surface.ny,
-        q_low_d: surface.q_low() * thickness,
-        area_fraction,
-        mean_contact_pressure,
-        sigma_rms_top: est(|s| s.sigma_top, 0.0),
-        sigma_rms_interface: est(|s| s.sigma_int, 0.0),
-        tau_rms_interface: est(|s| s.tau_rms, 0.0),
-        tau_peak,
-        sigma_peak_interface,
-        bond_exceedance: est(|s| s.bond_fraction, 0.0),
-        checks,
-        pass,
-        sliding: fine.sliding.as_ref().map(|(s, t)| {
-            let half = coarse.as_ref().and_then(|c| c.sliding.as_ref());
-            sliding::SlidingVerification::of((s, t), half.map(|(s, t)| (s, t)))
-        }),
-        convergence: fine.convergence,
-        seconds: started.elapsed().as_secs_f64(),
-    })
+    checks
 }
 
 /// One quantity of the Persson-vs-exact comparison.
@@ -353,6 +390,13 @@ pub struct Comparison {
     pub rows: Vec<Row>,
     /// Wall time of the exact solve and its interface fields (s).
     pub seconds: f64,
+    /// A/A0 with its error: the solver tolerance's share plus the difference to the same map
+    /// at half the resolution (the tolerance's share alone for maps with fewer than 32 pixels a
+    /// side). A measure of the discretisation error, not a bound: on a 64² self-affine test map
+    /// the difference to its 128² parent was up to 5.7× larger (`tests/it/exact.rs`).
+    pub area_fraction: Estimate,
+    /// A/A0 of the half-resolution map, when it was solved.
+    pub area_fraction_half: Option<f64>,
 }
 
 /// Persson's estimate on the map's own spectrum (periodic, no window, all wavelengths down to
@@ -397,6 +441,8 @@ pub fn compare(
     let theory = persson(map, stack, p0, settings)?;
     let above_bond = bond.map(|b| fields.shear_fraction_above(b));
     let rows = comparison_rows(&solution, &fields, &theory, bond, above_bond);
+    let (area_fraction, area_fraction_half) =
+        area_fraction_error(&surface, stack, p0, bem, solution.area_fraction)?;
     Ok(Comparison {
         surface,
         solution,
@@ -405,7 +451,29 @@ pub fn compare(
         above_bond,
         rows,
         seconds,
+        area_fraction,
+        area_fraction_half,
     })
+}
+
+/// A/A0 of a solve on `surface` with its error: the solver tolerance's share plus the
+/// difference to the same map at half the resolution (see [`Comparison::area_fraction`]), and
+/// the half-resolution A/A0 when the map could be halved.
+pub(crate) fn area_fraction_error(
+    surface: &Surface,
+    stack: &Stack,
+    p0: f64,
+    bem: &BemSettings,
+    a: Estimate,
+) -> Result<(Estimate, Option<f64>), Error> {
+    let half_area = half(surface)
+        .map(|s| Ok::<_, Error>(solve(&s?, stack, p0, bem)?.0.area_fraction.value))
+        .transpose()?;
+    let area_fraction = Estimate {
+        err: a.err + half_area.map_or(0.0, |h| (a.value - h).abs()),
+        ..a
+    };
+    Ok((area_fraction, half_area))
 }
 
 /// The compared quantities: Persson's rms values, and his Gaussian quantiles of |τ| and the

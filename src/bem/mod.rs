@@ -412,6 +412,26 @@ pub fn solve(
     solve_with_compliance(surface, |q| 2.0 * layers.s(q * d) / (q * e0), p0, settings)
 }
 
+/// [`solve`] warm-started from the pressure field `start` (Pa, `start[iy * nx + ix]`, e.g. the
+/// solution of a neighbouring thickness): the iteration begins on its contact set, rescaled to
+/// the mean p0, instead of the full contact of a cold start. The converged answer is the same
+/// (the contact problem has one solution and the stopping test does not depend on the path);
+/// only the iterations differ.
+pub fn solve_from(
+    surface: &Surface,
+    stack: &Stack,
+    p0: f64,
+    settings: &BemSettings,
+    start: &[f64],
+) -> Result<BemSolution, Error> {
+    check_stack(stack)?;
+    let e0 = stack.layers.film.e_star();
+    let d = stack.thickness;
+    let layers = stack.layers;
+    let compliance = |q: f64| 2.0 * layers.s(q * d) / (q * e0);
+    solve_compliance_from(surface, compliance, p0, settings, Some(start))
+}
+
 /// Solve with an arbitrary isotropic surface compliance `compliance(q)` = u_z(q)/p(q) (m/Pa,
 /// finite and > 0 for q > 0); e.g. `|q| 2.0 / (q * e_star)` for a homogeneous half-space.
 pub fn solve_with_compliance<K>(
@@ -419,6 +439,35 @@ pub fn solve_with_compliance<K>(
     compliance: K,
     p0: f64,
     settings: &BemSettings,
+) -> Result<BemSolution, Error>
+where
+    K: Fn(f64) -> f64 + Sync,
+{
+    solve_compliance_from(surface, compliance, p0, settings, None)
+}
+
+/// The initial pressure of a warm start: `start` rescaled to the mean `p0`; it must have one
+/// value per pixel, all finite and ≥ 0, not all 0.
+fn warm_pressure(start: &[f64], n: usize, p0: f64) -> Result<Vec<f64>, Error> {
+    let total: f64 = start.iter().sum();
+    if start.len() != n || start.iter().any(|v| !(v.is_finite() && *v >= 0.0)) || total <= 0.0 {
+        return Err(Error::invalid(
+            "warm-start pressure",
+            format!("{} values summing to {total:e} Pa", start.len()),
+            "one finite pressure >= 0 per pixel, not all 0",
+        ));
+    }
+    let scale = p0 * n as f64 / total;
+    Ok(start.iter().map(|v| v * scale).collect())
+}
+
+/// [`solve_with_compliance`], from the full contact (`start` = None) or a warm start.
+fn solve_compliance_from<K>(
+    surface: &Surface,
+    compliance: K,
+    p0: f64,
+    settings: &BemSettings,
+    start: Option<&[f64]>,
 ) -> Result<BemSolution, Error>
 where
     K: Fn(f64) -> f64 + Sync,
@@ -448,7 +497,10 @@ where
     let tol = settings.gap_tol * h_rms;
 
     // p: admissible pressure (p ≥ 0, mean p0); u = K p; g: gap; t: conjugate direction; r = K t.
-    let mut p = vec![p0; n];
+    let mut p = match start {
+        Some(start) => warm_pressure(start, n, p0)?,
+        None => vec![p0; n],
+    };
     let mut u = vec![0.0; n];
     let mut g = vec![0.0; n];
     let mut t = vec![0.0; n];

@@ -33,7 +33,7 @@
 //! longer, which were not measured).
 
 pub(crate) mod basis;
-mod checker;
+pub(crate) mod checker;
 pub mod criteria;
 pub mod itp;
 pub mod levers;

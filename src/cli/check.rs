@@ -4,6 +4,7 @@ use coatcheck::Error;
 use coatcheck::batch::{self, SceneRun};
 use coatcheck::bem::BemSettings;
 use coatcheck::check::log_space;
+use coatcheck::exact::ExactOptions;
 use coatcheck::material::Library;
 use coatcheck::pipeline;
 use coatcheck::report::{self, Format};
@@ -61,10 +62,10 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
     let (text, code) = match sweep {
         Some(range) => (run_sweep(&args, &scene, range)?, 0),
         None => {
-            let exact = args.verify.then(BemSettings::default);
+            let exact = args.verify.then(|| exact_options(&args)).transpose()?;
             let started = std::time::Instant::now();
             let judged =
-                pipeline::judge(&scene, exact.as_ref()).map_err(|e| match &scene.file {
+                pipeline::judge_exact(&scene, exact.as_ref()).map_err(|e| match &scene.file {
                     Some(file) => coatcheck::batch::naming(file, e),
                     None => e,
                 })?;
@@ -89,6 +90,31 @@ pub fn run(args: CheckArgs) -> Result<i32, Error> {
     };
     output(&args, &text)?;
     Ok(code)
+}
+
+/// The exact check's options from `--realisations` and `--realisation-grid`.
+fn exact_options(args: &CheckArgs) -> Result<ExactOptions, Error> {
+    use coatcheck::exact::realisations::{MAX_REALISATIONS, MAX_SIDE, MIN_SIDE};
+    if !(2..=MAX_REALISATIONS).contains(&args.realisations) {
+        return Err(Error::invalid(
+            "--realisations",
+            args.realisations,
+            "2 <= K <= 256",
+        ));
+    }
+    let n = args.realisation_grid;
+    if !(n.is_power_of_two() && (MIN_SIDE..=MAX_SIDE).contains(&n)) {
+        return Err(Error::invalid(
+            "--realisation-grid",
+            n,
+            "a power of two from 32 to 4096",
+        ));
+    }
+    Ok(ExactOptions {
+        bem: BemSettings::default(),
+        realisations: args.realisations,
+        max_side: n,
+    })
 }
 
 /// The thickness sweep of a scene with one roughness file.

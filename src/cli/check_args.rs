@@ -55,10 +55,19 @@ pub struct CheckArgs {
     #[arg(long, value_name = "FROM:TO:N")]
     pub sweep_thickness: Option<String>,
     /// Also solve the contact exactly on the scene's height map (roughness.profile) with
-    /// boundary elements and judge the checks on the solved fields; the design then passes only
-    /// if both pass.
+    /// boundary elements and judge the checks on the solved fields, the minimum thickness
+    /// included; a scene given by a spectrum is solved on random-phase realisations of it. The
+    /// design then passes only if both pass.
     #[arg(long, conflicts_with = "sweep_thickness")]
     pub verify: bool,
+    /// With --verify on a scene without a height map: the number of random-phase realisations
+    /// of its spectrum (fixed seeds 1..K), 2 to 256.
+    #[arg(long, value_name = "K", requires = "verify", default_value_t = coatcheck::exact::realisations::DEFAULT_REALISATIONS)]
+    pub realisations: usize,
+    /// With --verify on a scene without a height map: the largest side of the realisations'
+    /// grid in pixels, a power of two from 32 to 4096 (a solve holds about 120 n² bytes).
+    #[arg(long, value_name = "N", requires = "verify", default_value_t = coatcheck::exact::realisations::DEFAULT_MAX_SIDE)]
+    pub realisation_grid: usize,
     /// Also write the qualification report as one self-contained HTML page (verdict, checks,
     /// what would make a failing design pass, inputs with sources, plots, warnings,
     /// uncertainty), atomically; a batch gets a summary and a section per scene.

@@ -93,6 +93,11 @@ pub struct Record {
     pub verify_mean_contact_pressure_pa: Option<f64>,
     pub verify_tau_peak_pa: Option<f64>,
     pub verify_sigma_peak_interface_pa: Option<f64>,
+    /// The exact minimum thickness and its error (bracket plus grid).
+    pub verify_min_thickness_m: Option<f64>,
+    pub verify_min_thickness_m_err: Option<f64>,
+    /// How many realisations of the spectrum were solved (scenes without a height map).
+    pub verify_realisations: Option<usize>,
     pub warnings: Vec<String>,
     /// A layer stack's varied layer (`criteria.thickness_of`; `thickness_m` is its thickness)
     /// and every interface, top first (absent for a film).
@@ -192,6 +197,10 @@ impl Record {
             r.verify_mean_contact_pressure_pa = Some(v.mean_contact_pressure.value);
             r.verify_tau_peak_pa = Some(v.tau_peak.value.value);
             r.verify_sigma_peak_interface_pa = Some(v.sigma_peak_interface.value.value);
+            let d = x.min_thickness.as_ref().and_then(|m| m.thickness());
+            r.verify_min_thickness_m = d.map(|d| d.value);
+            r.verify_min_thickness_m_err = d.map(|d| d.err);
+            r.verify_realisations = x.realisations.as_ref().map(|r| r.count);
         }
         r
     }
@@ -459,6 +468,15 @@ const TAIL: &[Column] = &[
     ("verify_tau_peak_pa", |r| Cell::Number(r.verify_tau_peak_pa)),
     ("verify_sigma_peak_interface_pa", |r| {
         Cell::Number(r.verify_sigma_peak_interface_pa)
+    }),
+    ("verify_min_thickness_m", |r| {
+        Cell::Number(r.verify_min_thickness_m)
+    }),
+    ("verify_min_thickness_m_err", |r| {
+        Cell::Number(r.verify_min_thickness_m_err)
+    }),
+    ("verify_realisations", |r| {
+        Cell::Number(r.verify_realisations.map(|k| k as f64))
     }),
     ("worst_file", |r| Cell::Text(r.worst_file.clone())),
     ("files", |r| Cell::Count(r.files as u64)),

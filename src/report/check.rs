@@ -417,7 +417,6 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
         crate::pipeline::Verdict::Stack(o) => return super::stack::scene(j, o, format),
     };
     let scene = &j.scene;
-    let ev = &outcome.evaluation;
     let verdict = if j.pass() { "pass" } else { "fail" };
     let several = !j.files.is_empty();
     Ok(match format {
@@ -428,7 +427,7 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
                 human(scene, outcome, &j.levers)
             );
             if let Some(x) = &j.exact {
-                t += &format!("\n{}", verify::check_table(&x.map, ev, &x.verification));
+                t += &format!("\n{}", verify::check_table(x, outcome));
             }
             t
         }
@@ -443,10 +442,8 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
                 v["warnings"] = json!(j.warnings);
             }
             if let (Some(x), Some(o)) = (&j.exact, v.as_object_mut()) {
-                o.insert(
-                    "verify".into(),
-                    verify::check_json(&x.map, ev, &x.verification),
-                );
+                o.insert("verify".into(), verify::check_json(x, outcome));
+                o.insert("exact".into(), verify::exact_json(x, outcome));
                 o.insert("verdict_with_verify".into(), verdict.into());
             }
             format!("{v:#}\n")

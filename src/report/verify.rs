@@ -4,12 +4,15 @@
 
 use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
 use crate::bem::{BemSolution, Convergence, FieldStats, InterfaceFields, Surface};
-use crate::check::Evaluation;
+use crate::check::{CheckKind, MinThickness, Outcome};
 use crate::contact::SlidingShear;
 use crate::error::Error;
+use crate::exact::Realisations;
+use crate::exact::min_thickness::ExactMinThickness;
 use crate::layer::Stack;
+use crate::pipeline::Exact;
 use crate::verify::sliding::ExactSliding;
-use crate::verify::{Comparison, Verification, check_rows};
+use crate::verify::{Comparison, ExactCheck, check_rows};
 use serde_json::{Value, json};
 use std::io::Write;
 use std::path::Path;
@@ -36,6 +39,7 @@ fn stats_json(s: &FieldStats) -> Value {
 pub fn verify_table(i: &VerifyInputs, c: &Comparison) -> String {
     let (s, sol, stack, p0) = (&c.surface, &c.solution, i.stack, i.p0);
     let (xi, seconds, rows) = (s.rms_slope(), c.seconds, &c.rows);
+    let (area_fraction, area_half) = (c.area_fraction, c.area_fraction_half);
     let mut scene = table(&["scene", "value"]);
     let l = stack.layers;
     scene.add_row(vec![
@@ -108,13 +112,26 @@ pub fn verify_table(i: &VerifyInputs, c: &Comparison) -> String {
             r.ratio().map_or("-".into(), |v| sig(v, 3)),
         ]);
     }
+    let area = match area_half {
+        Some(h) => format!(
+            "A/A0 counts pixels in contact: {} ± {} (the solver tolerance's ±{:.1e} plus the \
+             difference to the same map at half resolution, A/A0 = {})",
+            sig(area_fraction.value, 4),
+            sig(area_fraction.err, 2),
+            sol.area_fraction.err,
+            sig(h, 4)
+        ),
+        None => format!(
+            "A/A0 counts pixels in contact (±{:.1e} from the solver tolerance; the map is too \
+             small to halve: refine it to see the discretisation error)",
+            sol.area_fraction.err
+        ),
+    };
     format!(
         "{scene}\n{t}\n{}\n",
         wrap(&format!(
-            "A/A0 counts pixels in contact (±{:.1e} from the solver tolerance); refine the map to \
-             see the discretisation error. Quantiles: contact pressure over the contact area, \
-             interface stresses over the whole interface.",
-            sol.area_fraction.err
+            "{area}. Quantiles: contact pressure over the contact area, interface stresses over \
+             the whole interface."
         ))
     )
 }
@@ -185,7 +202,8 @@ pub fn verify_json(i: &VerifyInputs, c: &Comparison) -> Value {
         "thickness_m": d, "pressure_pa": p0,
         "solver": solver_json(&sol.convergence, seconds),
         "area_fraction": sol.area_fraction.value,
-        "area_fraction_err": sol.area_fraction.err,
+        "area_fraction_err": c.area_fraction.err,
+        "area_fraction_half_resolution": c.area_fraction_half,
         "persson_area_fraction": theory.area_fraction.value,
         "persson_area_fraction_err": theory.area_fraction.err,
         "sigma_rms_top_pa": sol.sigma_rms_top,
@@ -237,41 +255,95 @@ pub fn write_fields(
     })
 }
 
-/// The `check --verify` section as tables (MPa, 4 significant digits, like the check's report).
-pub fn check_table(map: &Path, ev: &Evaluation, v: &Verification) -> String {
-    let mut out = wrap(&format!(
-        "exact check on the height map {} ({} x {} pixels, q_L d = {}; boundary elements, {} \
-         iterations; error = difference to the same map at half resolution)",
-        map.display(),
-        v.nx,
-        v.ny,
-        sig(v.q_low_d, 3),
-        v.convergence.iterations
-    ));
+/// A value of the `check --verify` section in human units: stresses (keys ending in `_pa`) in
+/// MPa, thicknesses (`_m`) in µm, the rest as they are, 4 significant digits.
+fn show(key: &str, x: f64) -> String {
+    if key.ends_with("_pa") {
+        format!("{} MPa", sig(x * 1e-6, 4))
+    } else if key.ends_with("_m") {
+        format!("{} µm", um(x))
+    } else {
+        sig(x, 4)
+    }
+}
+
+/// The report key's unit suffix of an exact check's value and limit.
+fn check_key(kind: CheckKind) -> &'static str {
+    if kind == CheckKind::MinThickness {
+        "_m"
+    } else {
+        "_pa"
+    }
+}
+
+/// The heading of the `check --verify` section: the map, or the realisations and their grid.
+fn heading(x: &Exact) -> String {
+    let v = &x.verification;
+    let solves = x
+        .min_thickness
+        .as_ref()
+        .map(|m| format!(", {} more for the minimum thickness", m.solves))
+        .unwrap_or_default();
+    match &x.realisations {
+        None => format!(
+            "exact check on the height map {} ({} x {} pixels, q_L d = {}; boundary elements, {} \
+             iterations{solves}; error = difference to the same map at half resolution)",
+            x.map.display(),
+            v.nx,
+            v.ny,
+            sig(v.q_low_d, 3),
+            v.convergence.iterations
+        ),
+        Some(r) => format!(
+            "exact check on {} random-phase realisations of the scene's spectrum ({}; seeds {}..{}; {} x \
+             {} pixels of {} µm, q_L d = {}, modes up to {} 1/m; boundary elements{solves}): \
+             each exact number is the mean over the realisations, spread = standard error of \
+             that mean, error = mean difference to the same surfaces at half resolution; the \
+             grid leaves out {} of the slope variance",
+            r.count,
+            x.map.display(),
+            r.seeds[0],
+            r.seeds[r.seeds.len() - 1],
+            v.nx,
+            v.ny,
+            um(r.grid.dx),
+            sig(v.q_low_d, 3),
+            sig(r.grid.q_nyquist, 4),
+            sig(r.grid.unresolved_slope_share, 3)
+        ),
+    }
+}
+
+/// The `check --verify` section as tables (MPa, µm, 4 significant digits, like the check's
+/// report): Persson beside the exact numbers, the exact checks, both minimum thicknesses and
+/// the exact verdict.
+pub fn check_table(x: &Exact, outcome: &Outcome) -> String {
+    let (v, ev) = (&x.verification, &outcome.evaluation);
+    let spread = x.realisations.as_ref();
+    let mut out = wrap(&heading(x));
     out.push('\n');
-    let show = |key: &str, x: f64| match key.strip_suffix("_pa") {
-        Some(_) => format!("{} MPa", sig(x * 1e-6, 4)),
-        None => sig(x, 4),
-    };
-    let mut t = table(&[
-        "quantity",
-        "Persson",
-        "exact (BEM)",
-        "error estimate",
-        "exact/Persson",
-    ]);
+    let mut head = vec!["quantity", "Persson", "exact (BEM)", "error estimate"];
+    if spread.is_some() {
+        head.push("spread");
+    }
+    head.push("exact/Persson");
+    let mut t = table(&head);
     for r in check_rows(ev, v) {
         let (name, key, p, e) = (r.name, r.key, r.persson, r.exact);
         let ratio = p
             .filter(|p| p.value != 0.0)
             .map_or("-".into(), |p| sig(e.value / p.value, 3));
-        t.add_row(vec![
+        let mut row = vec![
             name.to_string(),
             p.map_or("-".into(), |p| show(key, p.value)),
             show(key, e.value),
             show(key, e.err),
-            ratio,
-        ]);
+        ];
+        if let Some(s) = spread {
+            row.push(s.spread_of(key).map_or("-".into(), |s| show(key, s)));
+        }
+        row.push(ratio);
+        t.add_row(row);
     }
     out += &format!("{t}\n");
     let mut c = table(&[
@@ -287,10 +359,16 @@ pub fn check_table(map: &Path, ev: &Evaluation, v: &Verification) -> String {
         if !ch.resolved {
             result += " (map maximum: epsilon < 1/pixels)";
         }
+        let key = check_key(ch.kind);
+        let limit = match ch.kind {
+            CheckKind::MinThickness if ch.limit.is_infinite() => "none passes".into(),
+            CheckKind::MinThickness => format!(">= {}", show(key, ch.limit)),
+            _ => format!("<= {}", show(key, ch.limit)),
+        };
         c.add_row(vec![
             ch.kind.name().to_string(),
-            show("_pa", ch.value.value),
-            format!("<= {}", show("_pa", ch.limit)),
+            show(key, ch.value.value),
+            limit,
             utilisation_cell(Some(ch.margin)),
             margin_cell(Some(ch.margin)),
             result,
@@ -307,19 +385,73 @@ pub fn check_table(map: &Path, ev: &Evaluation, v: &Verification) -> String {
         ));
         out.push('\n');
     }
+    if let Some(m) = &x.min_thickness {
+        out += &wrap(&min_thickness_line(
+            outcome.min_thickness.as_ref(),
+            m,
+            spread,
+        ));
+        out.push('\n');
+    }
     out += &wrap(&format!(
-        "exact verdict: {}; with --verify the design passes only if both Persson's and the exact \
-         checks pass (min-thickness is judged by Persson's theory only)",
+        "exact verdict: {}; with --verify the design passes only if both Persson's checks and \
+         the exact ones (the exact minimum thickness included) pass",
         if v.pass { "PASS" } else { "FAIL" }
     ));
     out.push('\n');
     out
 }
 
-/// The `check --verify` section as a JSON value.
-pub fn check_json(map: &Path, ev: &Evaluation, v: &Verification) -> Value {
+/// Persson's and the exact minimum thickness side by side, with their errors.
+fn min_thickness_line(
+    persson: Option<&MinThickness>,
+    m: &ExactMinThickness,
+    spread: Option<&Realisations>,
+) -> String {
+    let persson = match persson.and_then(|p| p.thickness) {
+        Some(d) => format!("{} µm ± {} µm", um(d.value), sig(d.err * 1e6, 2)),
+        None => "no thickness passes".into(),
+    };
+    let exact = match m.thickness() {
+        None => "no thickness passes".into(),
+        Some(d) => {
+            let bracket = m.search.thickness.map_or(f64::NAN, |b| b.err);
+            let spread = spread
+                .map(|r| format!(", spread ± {} µm", sig(r.min_thickness_spread * 1e6, 2)))
+                .unwrap_or_default();
+            format!(
+                "{} µm ± {} µm (bracket ± {} µm, grid ± {} µm{spread}; set by {})",
+                um(d.value),
+                sig(d.err * 1e6, 2),
+                sig(bracket * 1e6, 2),
+                sig(m.grid_err * 1e6, 2),
+                m.search.governing.map_or("-", CheckKind::name)
+            )
+        }
+    };
+    format!("minimum thickness: Persson {persson}; exact {exact}")
+}
+
+/// One exact check as JSON: name, value (with `_err`) and its unit, limit, utilisation,
+/// margin, pass, and whether its ε-level is resolved by the map.
+fn exact_check_json(c: &ExactCheck) -> Value {
+    let unit = if c.kind == CheckKind::MinThickness {
+        "m"
+    } else {
+        "Pa"
+    };
+    json!({
+        "name": c.kind.name(), "value": c.value.value, "value_err": c.value.err,
+        "unit": unit, "limit": c.limit, "utilisation": 1.0 - c.margin,
+        "margin": c.margin, "pass": c.pass, "resolved": c.resolved,
+    })
+}
+
+/// The `check --verify` section as a JSON value (`verify`).
+pub fn check_json(x: &Exact, outcome: &Outcome) -> Value {
+    let (v, ev) = (&x.verification, &outcome.evaluation);
     let mut m = serde_json::Map::new();
-    m.insert("map".into(), json!(map.display().to_string()));
+    m.insert("map".into(), json!(x.map.display().to_string()));
     m.insert("nx".into(), json!(v.nx));
     m.insert("ny".into(), json!(v.ny));
     m.insert("q_low_d".into(), json!(v.q_low_d));
@@ -336,21 +468,86 @@ pub fn check_json(map: &Path, ev: &Evaluation, v: &Verification) -> Value {
     }
     m.insert(
         "checks".into(),
-        json!(
-            v.checks
-                .iter()
-                .map(|c| json!({
-                    "name": c.kind.name(), "value": c.value.value, "value_err": c.value.err,
-                    "unit": "Pa", "limit": c.limit, "utilisation": 1.0 - c.margin,
-                    "margin": c.margin, "pass": c.pass, "resolved": c.resolved,
-                }))
-                .collect::<Vec<_>>()
-        ),
+        json!(v.checks.iter().map(exact_check_json).collect::<Vec<_>>()),
     );
     m.insert("solver".into(), solver_json(&v.convergence, v.seconds));
     m.insert(
         "verdict".into(),
         json!(if v.pass { "pass" } else { "fail" }),
+    );
+    Value::Object(m)
+}
+
+/// The exact result as a JSON value (`exact`): its verdict, the exact d_min with its error
+/// (bracket plus grid, each also apart) beside Persson's, A/A0 and the stress levels with
+/// their errors, their ratio to Persson's (`_ratio`) and, over realisations, their spread
+/// (`_spread`, null on a map), and the exact checks.
+pub fn exact_json(x: &Exact, outcome: &Outcome) -> Value {
+    let (v, ev) = (&x.verification, &outcome.evaluation);
+    let r = x.realisations.as_ref();
+    let mut m = serde_json::Map::new();
+    m.insert(
+        "verdict".into(),
+        json!(if v.pass { "pass" } else { "fail" }),
+    );
+    m.insert(
+        "surface".into(),
+        json!(if r.is_some() { "realisations" } else { "map" }),
+    );
+    m.insert("source".into(), json!(x.map.display().to_string()));
+    m.insert("realisations".into(), json!(r.map_or(1, |r| r.count)));
+    m.insert("nx".into(), json!(v.nx));
+    m.insert("ny".into(), json!(v.ny));
+    m.insert(
+        "unresolved_slope_share".into(),
+        json!(r.map(|r| r.grid.unresolved_slope_share)),
+    );
+    let min = x.min_thickness.as_ref();
+    let d = min.and_then(ExactMinThickness::thickness);
+    m.insert("min_thickness_m".into(), json!(d.map(|d| d.value)));
+    m.insert("min_thickness_m_err".into(), json!(d.map(|d| d.err)));
+    m.insert(
+        "min_thickness_m_bracket_err".into(),
+        json!(min.and_then(|m| m.search.thickness).map(|d| d.err)),
+    );
+    m.insert(
+        "min_thickness_m_grid_err".into(),
+        json!(min.map(|m| m.grid_err)),
+    );
+    m.insert(
+        "min_thickness_m_spread".into(),
+        json!(r.map(|r| r.min_thickness_spread).filter(|_| min.is_some())),
+    );
+    let persson_d = outcome
+        .min_thickness
+        .as_ref()
+        .and_then(|p| p.thickness)
+        .map(|p| p.value);
+    m.insert(
+        "min_thickness_m_ratio".into(),
+        json!(d.zip(persson_d).map(|(d, p)| d.value / p)),
+    );
+    m.insert(
+        "min_thickness_governing_check".into(),
+        json!(min.and_then(|m| m.search.governing).map(CheckKind::name)),
+    );
+    m.insert("min_thickness_solves".into(), json!(min.map(|m| m.solves)));
+    for row in check_rows(ev, v) {
+        let (key, p, e) = (row.key, row.persson, row.exact);
+        m.insert(key.into(), json!(e.value));
+        m.insert(format!("{key}_err"), json!(e.err));
+        m.insert(
+            format!("{key}_spread"),
+            json!(r.and_then(|r| r.spread_of(key))),
+        );
+        m.insert(
+            format!("{key}_ratio"),
+            json!(p.filter(|p| p.value != 0.0).map(|p| e.value / p.value)),
+        );
+    }
+    m.insert(
+        "checks".into(),
+        json!(v.checks.iter().map(exact_check_json).collect::<Vec<_>>()),
     );
     Value::Object(m)
 }

@@ -137,19 +137,7 @@ impl SynthSpec {
     }
 
     fn mode_q(&self, ix: usize, iy: usize) -> f64 {
-        let n = self.n;
-        let dq = 2.0 * PI / (n as f64 * self.dx);
-        let fx = if ix <= n / 2 {
-            ix as f64
-        } else {
-            ix as f64 - n as f64
-        };
-        let fy = if iy <= n / 2 {
-            iy as f64
-        } else {
-            iy as f64 - n as f64
-        };
-        dq * fx.hypot(fy)
+        mode_q(self.n, self.dx, ix, iy)
     }
 
     /// C0 (m^4) for which the map has the requested rms height or slope.
@@ -176,15 +164,60 @@ impl SynthSpec {
     }
 }
 
+/// The wavenumber |q| (1/m) of Fourier mode (ix, iy) of an n × n map of pixel size dx (indices
+/// above n/2 are the negative frequencies).
+pub fn mode_q(n: usize, dx: f64, ix: usize, iy: usize) -> f64 {
+    let dq = 2.0 * PI / (n as f64 * dx);
+    let fx = if ix <= n / 2 {
+        ix as f64
+    } else {
+        ix as f64 - n as f64
+    };
+    let fy = if iy <= n / 2 {
+        iy as f64
+    } else {
+        iy as f64 - n as f64
+    };
+    dq * fx.hypot(fy)
+}
+
 /// A periodic self-affine height map with random phases (see the module docs).
 pub fn self_affine_map(spec: &SynthSpec) -> Result<HeightMap, Error> {
     spec.validate()?;
-    let n = spec.n;
     let c0 = spec.c0();
+    let map = random_phase_map(spec.n, spec.dx, |q| c0 * spec.shape(q), spec.seed);
+    let z = &map.z;
+    // C0 or the amplitudes leave the floating-point range for extreme inputs (an rms height
+    // of 1 m on femtometre pixels): a map of NaN, inf or zeros is refused rather than written.
+    if let Some(bad) = z.iter().find(|v| !v.is_finite()) {
+        return Err(Error::Numerical {
+            what: "synthetic height map",
+            detail: format!(
+                "a height is {bad} (C0 = {c0:e} m^4); the rms height or slope, pixel size and \
+                 wavenumbers are beyond the floating-point range together"
+            ),
+        });
+    }
+    if z.iter().all(|&v| v == 0.0) {
+        return Err(Error::Numerical {
+            what: "synthetic height map",
+            detail: format!(
+                "every height is 0 (C0 = {c0:e} m^4): the rms height or slope underflows"
+            ),
+        });
+    }
+    Ok(map)
+}
+
+/// One period (n × n pixels of size dx) of a surface with random phases whose Fourier mode
+/// (ix, iy) has the deterministic amplitude of the spectrum `c` (m^4) at the mode's
+/// wavenumber [`mode_q`] (1/m), |H_k| = √(C(q_k) (2π)² N / dx²) (module docs); the
+/// phases come from SplitMix64 with `seed`, one draw per mode pair whatever its amplitude.
+/// The heights are not checked: a caller judges whether they are finite.
+pub fn random_phase_map(n: usize, dx: f64, c: impl Fn(f64) -> f64, seed: u64) -> HeightMap {
     let big_n = (n * n) as f64;
-    let amp =
-        |q: f64| (c0 * spec.shape(q) * (2.0 * PI).powi(2) * big_n / (spec.dx * spec.dx)).sqrt();
-    let mut rng = SplitMix64::new(spec.seed);
+    let amp = |q: f64| (c(q) * (2.0 * PI).powi(2) * big_n / (dx * dx)).sqrt();
+    let mut rng = SplitMix64::new(seed);
     let mut h = vec![Complex64::new(0.0, 0.0); n * n];
     for iy in 0..n {
         for ix in 0..n {
@@ -194,7 +227,7 @@ pub fn self_affine_map(spec: &SynthSpec) -> Result<HeightMap, Error> {
             if partner < me {
                 continue;
             }
-            let a = amp(spec.mode_q(ix, iy));
+            let a = amp(mode_q(n, dx, ix, iy));
             if partner == me {
                 let sign = if rng.next_u64() & 1 == 0 { 1.0 } else { -1.0 };
                 h[me] = Complex64::new(sign * a, 0.0);
@@ -222,32 +255,12 @@ pub fn self_affine_map(spec: &SynthSpec) -> Result<HeightMap, Error> {
             h[iy * n + ix] = col[iy];
         }
     }
-    let z: Vec<f64> = h.iter().map(|v| v.re / big_n).collect();
-    // C0 or the amplitudes leave the floating-point range for extreme inputs (an rms height
-    // of 1 m on femtometre pixels): a map of NaN, inf or zeros is refused rather than written.
-    if let Some(bad) = z.iter().find(|v| !v.is_finite()) {
-        return Err(Error::Numerical {
-            what: "synthetic height map",
-            detail: format!(
-                "a height is {bad} (C0 = {c0:e} m^4); the rms height or slope, pixel size and \
-                 wavenumbers are beyond the floating-point range together"
-            ),
-        });
-    }
-    if z.iter().all(|&v| v == 0.0) {
-        return Err(Error::Numerical {
-            what: "synthetic height map",
-            detail: format!(
-                "every height is 0 (C0 = {c0:e} m^4): the rms height or slope underflows"
-            ),
-        });
-    }
-    Ok(HeightMap {
+    HeightMap {
         nx: n,
         ny: n,
-        dx: spec.dx,
-        dy: spec.dx,
-        z,
+        dx,
+        dy: dx,
+        z: h.iter().map(|v| v.re / big_n).collect(),
         periodic: true,
-    })
+    }
 }

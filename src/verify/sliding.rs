@@ -13,7 +13,7 @@
 //! [`SlidingVerification`] carries the exact numbers (with the half-resolution error estimate of
 //! [`super::verify`]) into `check --verify`.
 
-use super::{CheckRow, Comparison, Row, comparison_rows, map_spectrum, solve};
+use super::{CheckRow, Comparison, Row, area_fraction_error, comparison_rows, map_spectrum, solve};
 use crate::bem::sliding::friction_fields;
 use crate::bem::{BemSettings, BemSolution, FieldStats, InterfaceFields, Surface};
 use crate::check::Evaluation;
@@ -222,8 +222,12 @@ pub fn compare_sliding(
         &exact,
         bond.zip(above_bond),
     )?;
+    let (area_fraction, area_fraction_half) =
+        area_fraction_error(&surface, stack, p0, bem, solution.area_fraction)?;
     Ok(SlidingComparison {
         comparison: Comparison {
+            area_fraction,
+            area_fraction_half,
             surface,
             solution,
             fields: total,

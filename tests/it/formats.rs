@@ -198,6 +198,13 @@ fn check_one_scene_json_and_csv() {
             ] {
                 want.insert(format!("verify_{k}"), v[k].clone());
             }
+            let x = &j["exact"];
+            for k in ["min_thickness_m", "min_thickness_m_err"] {
+                want.insert(format!("verify_{k}"), x[k].clone());
+            }
+            if x["surface"] == "realisations" {
+                want.insert("verify_realisations".into(), x["realisations"].clone());
+            }
         }
         row_matches(&head, &rows[0], &want, &format!("{scene:?}"));
     }

@@ -7,6 +7,7 @@ mod cli_psd_format;
 mod cli_response;
 mod common;
 mod contact;
+mod exact;
 mod extreme;
 mod figures;
 mod fixtures;
