@@ -408,7 +408,8 @@ fn the_larger_yield_level_governs_and_the_peak_wins_a_tie() {
 /// equals the one found by solving the peak at every step, within the two estimates' errors,
 /// with the same governing check. Paper scene (rubber on steel, p0 = 0.1 MPa, ε = 1e-6,
 /// bond shear and substrate yield), μ = 0.02, 0.5, 1 with bond strengths that put d_min inside
-/// the range, and μ = 0.5 with a bond that only a bulk film passes; also under a safety factor.
+/// the range, the same under a safety factor 1.5, and μ = 0.5 with a bond strength just above
+/// the mean friction μp0 = 50 kPa.
 #[test]
 fn search_with_one_step_peaks_matches_solved_peaks() {
     use crate::layer::Elastic;
