@@ -98,25 +98,30 @@ impl Checker {
                 (self.basis.q_low, self.basis.q_high),
             ));
         }
-        self.assess(contact, sliding, true)
+        self.assess(contact, sliding, true, Peak::Solved)
     }
 
     /// The peak interface shear by the rule in force, with P(|τ| > τ_bond) when `extras`: the
-    /// paper's half-normal of τ_rms, or the vector's ([`ShearVector::peak`]; the rms errors
-    /// enter as their largest relative error times the peak, which is homogeneous of degree 1
-    /// and increasing in the mean and both rms).
+    /// paper's half-normal of τ_rms, or the vector's ([`ShearVector::peak`], or under
+    /// [`Peak::FromLimit`] its one-step estimate from the bond limit; the rms errors enter as
+    /// their largest relative error times the peak, which is homogeneous of degree 1 and
+    /// increasing in the mean and both rms).
     fn shear_peak(
         &self,
         tau: Estimate,
         sliding: Option<&SlidingShear>,
         extras: bool,
+        how: Peak,
     ) -> Result<(Estimate, Option<f64>), Error> {
         let d = &self.design;
         let eps = d.criteria.epsilon;
         match sliding {
             Some(s) => {
                 let v = ShearVector::new(s.mean.value, s.tau_x_rms.value, s.tau_y_rms.value)?;
-                let mut peak = v.peak(eps)?;
+                let mut peak = match how {
+                    Peak::Solved => v.peak(eps)?,
+                    Peak::FromLimit => v.peak_from(self.limit(d.bond_strength), eps)?,
+                };
                 let rel = s.tau_x_rms.rel_err().max(s.tau_y_rms.rel_err());
                 peak.err += rel * peak.value;
                 peak.status = Estimate::worst(
@@ -143,6 +148,7 @@ impl Checker {
         contact: Contact,
         sliding: Option<SlidingShear>,
         extras: bool,
+        how: Peak,
     ) -> Result<Evaluation, Error> {
         let d = &self.design;
         let eps = d.criteria.epsilon;
@@ -159,7 +165,7 @@ impl Checker {
         let mut checks = Vec::new();
         let (mut tau_peak, mut bond_exceedance, mut tau_peak_static) = (None, None, None);
         if let Some(tau) = contact.tau_rms_interface {
-            let (peak, exceedance) = self.shear_peak(tau, sliding.as_ref(), extras)?;
+            let (peak, exceedance) = self.shear_peak(tau, sliding.as_ref(), extras, how)?;
             if on.bond_shear {
                 checks.push(upper_check(
                     CheckKind::BondShear,
@@ -170,7 +176,7 @@ impl Checker {
             tau_peak = Some(peak);
             bond_exceedance = exceedance;
             if sliding.is_some() && extras {
-                tau_peak_static = Some(self.shear_peak(tau, None, false)?.0);
+                tau_peak_static = Some(self.shear_peak(tau, None, false, how)?.0);
             }
         }
         let (mut sigma_peak_interface, mut yield_exceedance) = (None, None);
@@ -213,11 +219,12 @@ impl Checker {
     }
 
     /// Utilisation (value/limit, > 1 fails) of the enabled stress checks at `thickness`, with the
-    /// check that has the largest; only what those checks need is computed.
-    fn utilisation(&self, thickness: f64) -> Result<Utilisation, Error> {
+    /// check that has the largest; only what those checks need is computed, and the vector
+    /// rule's peak is found as `how` says.
+    fn utilisation(&self, thickness: f64, how: Peak) -> Result<Utilisation, Error> {
         let req = self.design.criteria.checks.request();
         let (contact, sliding) = self.contact(&self.basis.search, thickness, req)?;
-        let ev = self.assess(contact, sliding, false)?;
+        let ev = self.assess(contact, sliding, false, how)?;
         Ok(worst_utilisation(&ev.checks))
     }
 
@@ -228,7 +235,16 @@ impl Checker {
 
     /// The smallest thickness above which every enabled stress check passes (module docs).
     pub fn min_thickness(&self) -> Result<MinThickness, Error> {
-        self.basis.min_thickness(|d| self.utilisation(d))
+        self.basis
+            .min_thickness(|d| self.utilisation(d, Peak::FromLimit))
+    }
+
+    /// [`Self::min_thickness`] with the vector rule's peak solved at every step: the reference
+    /// the search's one-step estimates are tested against.
+    #[cfg(test)]
+    pub(super) fn min_thickness_solving_peaks(&self) -> Result<MinThickness, Error> {
+        self.basis
+            .min_thickness(|d| self.utilisation(d, Peak::Solved))
     }
 
     /// The full check at the design's thickness: all quantities, the enabled checks, d_min.
@@ -309,6 +325,18 @@ impl Checker {
         self.basis.engine.prepare(&self.design.layers, lo, hi);
         thicknesses.par_iter().map(|&d| self.evaluate(d)).collect()
     }
+}
+
+/// How the vector rule's peak shear is found at a thickness.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Peak {
+    /// Solved to [`crate::tail::PEAK_TARGET_RTOL`] ([`ShearVector::peak`]).
+    Solved,
+    /// One step from the bond limit ([`ShearVector::peak_from`]): on the same side of the
+    /// limit as the peak (so the same pass or fail) and close to it near the limit, where the
+    /// minimum-thickness search refines its crossing; one evaluation of the tail instead of a
+    /// root solve's several.
+    FromLimit,
 }
 
 /// What the roughness data say about a coating of `thickness` (m), named `what` ("film

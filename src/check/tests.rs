@@ -402,3 +402,60 @@ fn the_larger_yield_level_governs_and_the_peak_wins_a_tie() {
     assert_eq!(margin(3.0, 4.0), 0.25);
     assert!(passes(4.0, 4.0) && !passes(4.0 + 1e-12, 4.0));
 }
+
+/// Under the vector rule the search judges each thickness by one step of the peak's solve
+/// from the bond limit (`Checker::utilisation`, `tail::ShearVector::peak_from`): its d_min
+/// equals the one found by solving the peak at every step, within the two estimates' errors,
+/// with the same governing check. Paper scene (rubber on steel, p0 = 0.1 MPa, ε = 1e-6,
+/// bond shear and substrate yield), μ = 0.02, 0.5, 1 with bond strengths that put d_min inside
+/// the range, the same under a safety factor 1.5, and μ = 0.5 with a bond strength just above
+/// the mean friction μp0 = 50 kPa.
+#[test]
+fn search_with_one_step_peaks_matches_solved_peaks() {
+    use crate::layer::Elastic;
+    use crate::prec::Settings;
+    use crate::psd::Spectrum;
+    let spectrum = Spectrum::self_affine(1.0, 1e5, 1e8, None)
+        .unwrap()
+        .scaled_to_rms_slope(1.0)
+        .unwrap();
+    let cases = [
+        (0.02, 1e6, 1.0),
+        (0.5, 2e6, 1.0),
+        (1.0, 3e6, 1.0),
+        (0.5, 2e6, 1.5),
+        (0.5, 5.2e4, 1.0),
+    ];
+    for (mu, bond, safety_factor) in cases {
+        let design = Design {
+            layers: Bilayer::new(
+                Elastic::new(1e6, 0.5).unwrap(),
+                Elastic::new(1e11, 0.5).unwrap(),
+            ),
+            pressure: 1e5,
+            yield_strength: Some(2.5e8),
+            bond_strength: bond,
+            friction: mu,
+            criteria: Criteria {
+                shear_tail: Some(ShearTail::Vector),
+                epsilon: 1e-6,
+                safety_factor,
+                checks: Checks::all(),
+            },
+        };
+        let c = Checker::new(&spectrum, design, Settings::default()).unwrap();
+        let (fast, solved) = (
+            c.min_thickness().unwrap(),
+            c.min_thickness_solving_peaks().unwrap(),
+        );
+        assert_eq!(fast.governing, solved.governing, "{mu} {bond}");
+        assert_eq!(fast.all_pass_to_floor, solved.all_pass_to_floor);
+        match (fast.thickness, solved.thickness) {
+            (Some(a), Some(b)) => assert!(
+                (a.value - b.value).abs() <= a.err + b.err,
+                "mu {mu}, bond {bond}: {a:?} vs {b:?}"
+            ),
+            (a, b) => assert_eq!(a, b, "mu {mu}, bond {bond}"),
+        }
+    }
+}

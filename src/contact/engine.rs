@@ -9,7 +9,7 @@ use super::kernels::{Kernels, Mix};
 use super::{Contact, MAX_REFINE, Request};
 use crate::error::Error;
 use crate::layer::tangential::TANGENTIAL_RTOL;
-use crate::layer::{Bilayer, KernelTable, Stack};
+use crate::layer::{Bilayer, KernelTable, Stack, TangentialTable};
 use crate::prec::{EPS, Estimate, INTERFACE_ATOL, KERNEL_RTOL, Settings, Termination};
 use crate::psd::Spectrum;
 use std::cell::RefCell;
@@ -37,7 +37,14 @@ struct Shared {
     /// The kernel table of the last material pair evaluated (d-independent; rebuilt, wider, when
     /// a thickness needs q·d outside it).
     table: Mutex<Option<Arc<KernelTable>>>,
+    /// The friction kernels' table over the same pair and range as `table` (sliding only),
+    /// keyed by the pair and the range of the static table it was built for (`None` when the
+    /// kernels were not resolved: not tried again).
+    tangential: Mutex<Option<TangentialEntry>>,
 }
+
+/// A cached friction-kernel table: the pair, the static table's range, the table.
+type TangentialEntry = (Bilayer, (f64, f64), Option<Arc<TangentialTable>>);
 
 /// How far (in ln(qd)) a rebuilt kernel table reaches beyond the range asked for, so that a
 /// thickness scan does not rebuild it at every step.
@@ -80,6 +87,26 @@ impl Engine {
         if d_min > 0.0 && d_max.is_finite() {
             self.table_covering(layers, d_min, d_max);
         }
+    }
+
+    /// The friction kernels' table over the pair and range of the static `table`, from the
+    /// cache or newly built (so that it is the same for every thickness the static one serves).
+    fn tangential_for(&self, table: &KernelTable) -> Option<Arc<TangentialTable>> {
+        let mut cache = self
+            .shared
+            .tangential
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        let (layers, range) = (*table.layers(), table.range());
+        if let Some((_, _, t)) = cache
+            .as_ref()
+            .filter(|(l, r, _)| *l == layers && *r == range)
+        {
+            return t.clone();
+        }
+        let built = TangentialTable::new(layers, range.0, range.1).map(Arc::new);
+        *cache = Some((layers, range, built.clone()));
+        built
     }
 
     /// A kernel table for `stack` covering every node's q·d, from the cache or newly built.
@@ -170,13 +197,17 @@ impl Engine {
             ));
         }
         let table = self.table_for(stack);
+        let tangential = match (mix, table.as_deref()) {
+            (Mix::Static, _) | (_, None) => None,
+            (_, Some(t)) => self.tangential_for(t),
+        };
         let kernels = Kernels::new(
             table.as_deref(),
             &stack.layers,
             stack.thickness,
             self.spectrum.q_low(),
         )
-        .mixed(mix);
+        .mixed(mix, tangential.as_deref());
         let kernel_rtol = match mix {
             Mix::Static => KERNEL_RTOL,
             _ => KERNEL_RTOL.max(TANGENTIAL_RTOL),

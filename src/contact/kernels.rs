@@ -14,15 +14,16 @@
 //! q_L d, so the exact forms cost a few hundred evaluations.
 //!
 //! Under sliding ([`super::sliding`]) the interface integrals take other kernels in the two
-//! slots of f² and g² ([`Mix`]), from the exact tangential kernels
-//! ([`crate::layer::tangential`]): every mix is a sum of squares, and like f², g² decreases
-//! above q·d = 20 (each of g_t, f_t, h is (a + b x)e^{−x} there, with its zero, if any, below
-//! x = 2), which the interface integrals' cut relies on. Where the kernels are scaled (thick
-//! films), the tangential kernels are scaled alike; they flush to 0 above q·d ≈ 745, so the
-//! friction-driven parts are lost there (terms below e^{−1490} of the static ones).
+//! slots of f² and g² ([`Mix`]), from the squares of the tangential kernels
+//! ([`crate::layer::tangential`]) in the pair's [`TangentialTable`] (built over the static
+//! table's range, checked like it), or exact where there is no table: every mix is a sum of
+//! squares, and like f², g² decreases above q·d = 20 (each of g_t, f_t, h is (a + b x)e^{−x}
+//! there, with its zero, if any, below x = 2), which the interface integrals' cut relies on.
+//! Where the kernels are scaled (thick films), the tangential kernels are scaled alike, from
+//! their undecayed forms.
 
 use crate::layer::stack::{MAX_LAYERS, Stack};
-use crate::layer::{Bilayer, KernelTable, Nodes, Squared};
+use crate::layer::{Bilayer, KernelTable, Nodes, Squared, TangentialTable, undecayed_squares};
 use std::cell::RefCell;
 use std::collections::HashMap;
 
@@ -44,30 +45,17 @@ pub(super) enum Mix {
 }
 
 impl Mix {
-    /// The two slots from the static f², g² (unused by [`Mix::Friction`]) at x = q·d, with the
-    /// tangential kernels scaled by e^{shift} (module doc).
+    /// The two slots from the static f², g² (unused by [`Mix::Friction`]) and the squares
+    /// f_t², ((g_t + h)/2)² + (g_t − h)²/8, (g_t − h)²/8 (`squares`, called only under
+    /// sliding), all at one node and scaled alike.
     #[inline]
-    fn apply(self, layers: &Bilayer, x: f64, shift: f64, (f2, g2): (f64, f64)) -> (f64, f64) {
-        let scaled = |v: f64| {
-            if shift > 0.0 {
-                let half = (0.5 * shift).exp();
-                v * half * half
-            } else {
-                v
-            }
-        };
+    fn apply(self, squares: impl FnOnce() -> [f64; 3], (f2, g2): (f64, f64)) -> (f64, f64) {
         match self {
             Mix::Static => (f2, g2),
-            Mix::Sliding { mu2 } => {
-                let f_t = scaled(layers.tangential(x).f_t);
-                (f2 + 0.5 * mu2 * f_t * f_t, g2)
-            }
+            Mix::Sliding { mu2 } => (f2 + 0.5 * mu2 * squares()[0], g2),
             Mix::Friction => {
-                let t = layers.tangential(x);
-                let (g_t, h) = (scaled(t.g_t), scaled(t.h));
-                let (half_sum, diff) = (0.5 * (g_t + h), g_t - h);
-                let y = 0.125 * diff * diff;
-                (half_sum * half_sum + y, y)
+                let [_, along, across] = squares();
+                (along, across)
             }
         }
     }
@@ -116,6 +104,8 @@ pub(super) struct Kernels<'a> {
     source: Source<'a>,
     shift: f64,
     mix: Mix,
+    /// The friction kernels' table, used with a tabulated source.
+    tangential: Option<&'a TangentialTable>,
 }
 
 impl<'a> Kernels<'a> {
@@ -141,13 +131,37 @@ impl<'a> Kernels<'a> {
             source,
             shift,
             mix: Mix::Static,
+            tangential: None,
         }
     }
 
     /// These kernels with the interface slots mixed by `mix` (sliding; one-layer films only:
-    /// stack kernels keep f_k², g_k²).
-    pub(super) fn mixed(self, mix: Mix) -> Self {
-        Self { mix, ..self }
+    /// stack kernels keep f_k², g_k²), the friction kernels from `tangential` where the
+    /// static ones come from a table.
+    pub(super) fn mixed(self, mix: Mix, tangential: Option<&'a TangentialTable>) -> Self {
+        Self {
+            mix,
+            tangential,
+            ..self
+        }
+    }
+
+    /// The friction kernels' squares at the node q (u = ln q), scaled like f², g²: from the
+    /// table where there is one and no scaling, else from the undecayed exact forms times
+    /// e^{−2(qd − s)}.
+    #[inline]
+    fn friction_squares(&self, q: f64, u: f64) -> [f64; 3] {
+        let (layers, d) = match (self.source, self.tangential) {
+            (Source::Table { d, ln_d, .. }, Some(t)) if self.shift == 0.0 => {
+                return t.squares(q * d, u + ln_d);
+            }
+            (Source::Table { table, d, .. }, _) => (table.layers(), d),
+            (Source::Exact { layers, d }, _) => (layers, d),
+            (Source::Stack { .. }, _) => return [0.0; 3],
+        };
+        let x = q * d;
+        let e = (-(x - self.shift)).exp();
+        undecayed_squares(layers, x).map(|v| v * e * e)
     }
 
     /// The film and thickness of one-layer kernels.
@@ -161,10 +175,10 @@ impl<'a> Kernels<'a> {
 
     /// The interface slots `fg` (static f², g² at q, times e^{2s}) turned by the mix.
     #[inline]
-    fn apply_mix(&self, q: f64, fg: (f64, f64)) -> (f64, f64) {
+    fn apply_mix(&self, q: f64, u: f64, fg: (f64, f64)) -> (f64, f64) {
         match (self.mix, self.bilayer()) {
             (Mix::Static, _) | (_, None) => fg,
-            (mix, Some((layers, d))) => mix.apply(layers, q * d, self.shift, fg),
+            (mix, Some(_)) => mix.apply(|| self.friction_squares(q, u), fg),
         }
     }
 
@@ -175,6 +189,7 @@ impl<'a> Kernels<'a> {
             source: Source::Stack { stack, k, memo },
             shift: 0.0,
             mix: Mix::Static,
+            tangential: None,
         }
     }
 
@@ -217,7 +232,7 @@ impl<'a> Kernels<'a> {
         } else {
             self.static_interface(q, u)
         };
-        self.apply_mix(q, fg)
+        self.apply_mix(q, u, fg)
     }
 
     /// f², g² at the node (times e^{2s}), before the mix.
@@ -254,11 +269,13 @@ impl<'a> Kernels<'a> {
     /// f², g² (times e^{2s}) at the ascending nodes (q, u), into `f2` and `g2`.
     pub(super) fn interface_many(&self, q: &[f64], u: &[f64], f2: &mut [f64], g2: &mut [f64]) {
         match self.source {
-            Source::Table { table, d, ln_d } if self.shift == 0.0 && self.mix != Mix::Friction => {
-                table.interface_many(Nodes { q, u, d, ln_d }, f2, g2);
+            Source::Table { table, d, ln_d } if self.shift == 0.0 => {
+                if self.mix != Mix::Friction {
+                    table.interface_many(Nodes { q, u, d, ln_d }, f2, g2);
+                }
                 if self.mix != Mix::Static {
-                    for ((fo, go), &q) in f2.iter_mut().zip(g2.iter_mut()).zip(q) {
-                        (*fo, *go) = self.apply_mix(q, (*fo, *go));
+                    for (((fo, go), &q), &u) in f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u) {
+                        (*fo, *go) = self.apply_mix(q, u, (*fo, *go));
                     }
                 }
             }
@@ -282,7 +299,7 @@ impl<'a> Kernels<'a> {
         } else {
             (s.f2, s.g2)
         };
-        let (f2, g2) = self.apply_mix(q, fg);
+        let (f2, g2) = self.apply_mix(q, u, fg);
         Squared { k: s.k, f2, g2 }
     }
 

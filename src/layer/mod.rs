@@ -105,7 +105,9 @@ const QD_ZERO: f64 = 1490.0;
 pub mod stack;
 mod table;
 pub mod tangential;
+mod tangential_table;
 pub use table::{KernelTable, Nodes, Squared, X_FAR};
+pub use tangential_table::{TangentialTable, undecayed_squares};
 
 /// 1/(2k+3)! for k = 0..14: Taylor coefficients of (sinh y − y)/y³ in y².
 const SINH_COEF: [f64; 15] = {

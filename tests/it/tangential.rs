@@ -192,3 +192,105 @@ fn coupling_of_rubber_on_steel() {
     assert!((cs - 1.5).abs() < 2e-3, "c/S·qd = {cs}");
     assert!(max.0 > 10.0 && ratio(10.0) < 0.1);
 }
+
+/// A decimal number of the reference in units of 10^`unit`, exactly (for |v| < 10^(unit + 36);
+/// digits below the unit are dropped): the reference's g_t − h from its 20-digit columns
+/// without the rounding of parsing each into f64 (1e-16 relative to the larger, 1e-10 of a
+/// difference 1e-6 times smaller).
+fn fixed(s: &str, unit: i32) -> i128 {
+    let (mantissa, exp) = s.split_once(['e', 'E']).unwrap_or((s, "0"));
+    let exp: i32 = exp.parse().unwrap();
+    let (neg, mantissa) = match mantissa.strip_prefix('-') {
+        Some(m) => (true, m),
+        None => (false, mantissa),
+    };
+    let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let digits: String = format!("{int}{frac}");
+    // value = digits × 10^(exp − len(frac)) = digits × 10^shift units.
+    let shift = exp - frac.len() as i32 - unit;
+    let mut v: i128 = 0;
+    for (i, c) in digits.chars().enumerate() {
+        let place = shift + (digits.len() - 1 - i) as i32;
+        if place >= 0 {
+            v += i128::from(c.to_digit(10).unwrap()) * 10i128.pow(place as u32);
+        }
+    }
+    if neg { -v } else { v }
+}
+
+/// g_t − h from its own stable form (`Bilayer::shear_undecayed`) against the reference's
+/// g_t − h (formed exactly from its 20-digit columns): to 1e-13 relative where that difference
+/// keeps ≥ 14 digits (|g_t − h| ≥ 1e-5 h), within 1e-13 h + 1e-19 everywhere; f_t and h times
+/// e^{qd} equal the kernels' own, and g_t − h < 0 in every row.
+#[test]
+fn shear_difference_matches_reference() {
+    let mut n = 0;
+    for (line, v) in rows(include_str!("../data/tangential_ref.csv")) {
+        let b = pair(v[0], v[1], v[2]);
+        let x = v[3];
+        if x > 700.0 {
+            continue;
+        }
+        let s = b.shear_undecayed(x);
+        let e = (-x).exp();
+        let cols: Vec<&str> = line.split(',').collect();
+        let unit = v[4].abs().max(v[6]).log10().floor() as i32 - 24;
+        let want = (fixed(cols[4], unit) - fixed(cols[6], unit)) as f64 * 10f64.powi(unit);
+        let diff = s.diff * e;
+        assert!(diff < 0.0, "{line}: {diff:e}");
+        if want.abs() >= 1e-5 * v[6] {
+            n += 1;
+            assert!(
+                err(diff, want, 0.0) <= 1e-13,
+                "{line}: {diff:e} vs {want:e}"
+            );
+        }
+        assert!(
+            (diff - want).abs() <= 1e-13 * v[6] + 1e-19,
+            "{line}: {diff:e} vs {want:e}"
+        );
+        assert!(err(s.f_t * e, v[5], 0.0) <= TANGENTIAL_RTOL, "{line}");
+        assert!(err(s.h * e, v[6], 0.0) <= TANGENTIAL_RTOL, "{line}");
+    }
+    assert!(n > 1000, "{n} rows with a resolved difference");
+}
+
+/// The friction kernels' table (`TangentialTable`: f_t², ((g_t + h)/2)² + (g_t − h)²/8,
+/// (g_t − h)²/8) against the exact stable forms at 4000 points from q·d = 1e-8 to 1e4 placed
+/// off the panels' nodes, for an incompressible film (ν0 = 0.5) on substrates with ν1 = 0.5,
+/// 0.3, 0 and modulus ratios E0/E1 = 1e-8 … 1e8: within 1.5 TABLE_RTOL (3e-14, the kernels'
+/// contract is 1e-12) relative, every value being positive; where the exact value underflows
+/// (q·d ≳ 350) the table's is as small.
+#[test]
+fn tangential_table_matches_exact_kernels() {
+    use coatcheck::layer::{TangentialTable, undecayed_squares};
+    use coatcheck::prec::TABLE_RTOL;
+    let (lo, hi) = (1e-8f64.ln(), 1e4f64.ln());
+    for ratio in [1e-8, 1e-6, 1e-4, 1e-2, 1.0, 1e2, 1e4, 1e6, 1e8] {
+        for nu1 in [0.5, 0.3, 0.0] {
+            let b = pair(ratio, 0.5, nu1);
+            let table = TangentialTable::new(b, 1e-8, 1e4).expect("the kernels are resolved");
+            for i in 0..4000 {
+                let y = lo + (hi - lo) * (i as f64 + 0.377) / 4000.0;
+                let x = y.exp();
+                let e = (-x).exp();
+                let want = undecayed_squares(&b, x).map(|v| v * e * e);
+                let got = table.squares(x, y);
+                for k in 0..3 {
+                    if want[k] < 1e-290 {
+                        assert!(got[k] < 1e-280, "{ratio} {nu1} x {x:e} [{k}]: {got:?}");
+                        continue;
+                    }
+                    assert!(want[k] > 0.0);
+                    let rel = ((got[k] - want[k]) / want[k]).abs();
+                    assert!(
+                        rel <= 1.5 * TABLE_RTOL,
+                        "{ratio} {nu1} x {x:e} [{k}]: {:e} vs {:e} ({rel:.1e})",
+                        got[k],
+                        want[k]
+                    );
+                }
+            }
+        }
+    }
+}
