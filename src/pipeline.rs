@@ -200,7 +200,7 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
 
 /// The map behind `check --verify`: the scene's height file, which must be a height map, with
 /// its edge mismatch (it is solved as one period of a periodic surface).
-fn scene_map(scene: &Scene) -> Result<(PathBuf, Surface, f64), Error> {
+pub fn scene_map(scene: &Scene) -> Result<(PathBuf, Surface, f64), Error> {
     let RoughnessSource::Profile { path } = &scene.roughness.source else {
         return Err(Error::Value {
             origin: scene

@@ -109,7 +109,7 @@ struct Solved {
 }
 
 /// The nearest-rank (1 − ε) quantile of `values` (reordered) and whether ε ≥ 1/N.
-fn level(values: &mut [f64], eps: f64) -> (f64, bool) {
+pub(crate) fn level(values: &mut [f64], eps: f64) -> (f64, bool) {
     let n = values.len();
     let nf = n as f64;
     let rank = (((1.0 - eps) * nf).ceil() as usize).clamp(1, n);
@@ -125,7 +125,13 @@ pub fn solve(
     p0: f64,
     settings: &BemSettings,
 ) -> Result<(BemSolution, InterfaceFields), Error> {
-    let sol = bem::solve(surface, stack, p0, settings)?;
+    let sol = converged(surface, bem::solve(surface, stack, p0, settings)?)?;
+    let fields = bem::interface_fields(&sol, stack)?;
+    Ok((sol, fields))
+}
+
+/// A solve that did not converge as an error (nothing is judged on it).
+pub(crate) fn converged(surface: &Surface, sol: BemSolution) -> Result<BemSolution, Error> {
     let c = &sol.convergence;
     if c.status != Termination::Converged {
         return Err(Error::Numerical {
@@ -142,8 +148,7 @@ pub fn solve(
             ),
         });
     }
-    let fields = bem::interface_fields(&sol, stack)?;
-    Ok((sol, fields))
+    Ok(sol)
 }
 
 fn solve_one(
@@ -177,7 +182,7 @@ fn solve_one(
 }
 
 /// The surface sampled at every second pixel (same period, half the resolution).
-fn half(surface: &Surface) -> Option<Result<Surface, Error>> {
+pub(crate) fn half(surface: &Surface) -> Option<Result<Surface, Error>> {
     // A map with an odd side would lose its period; small maps have too few pixels to halve.
     let (nx, ny) = (surface.nx / 2, surface.ny / 2);
     if !surface.nx.is_multiple_of(2)
@@ -299,7 +304,7 @@ pub struct Row {
 }
 
 impl Row {
-    fn new(
+    pub(crate) fn new(
         name: impl Into<String>,
         unit: &'static str,
         persson: Option<Estimate>,
@@ -335,6 +340,19 @@ pub struct Comparison {
     pub seconds: f64,
 }
 
+/// The map's own spectrum (periodic, no window, all wavelengths down to the Nyquist limit, as
+/// the boundary elements see them).
+pub(crate) fn map_spectrum(map: &HeightMap) -> Result<Spectrum, Error> {
+    let psd = map_psd(
+        map,
+        &PsdOptions {
+            cutoff_pixels: 2.0,
+            ..PsdOptions::default()
+        },
+    )?;
+    Ok(Spectrum::Tabulated(psd.c2d))
+}
+
 /// Persson's estimate on the map's own spectrum (periodic, no window, all wavelengths down to
 /// the Nyquist limit, as the boundary elements see them).
 pub fn persson(
@@ -343,14 +361,7 @@ pub fn persson(
     p0: f64,
     settings: Settings,
 ) -> Result<Contact, Error> {
-    let psd = map_psd(
-        map,
-        &PsdOptions {
-            cutoff_pixels: 2.0,
-            ..PsdOptions::default()
-        },
-    )?;
-    let engine = Engine::new(&Spectrum::Tabulated(psd.c2d), settings);
+    let engine = Engine::new(&map_spectrum(map)?, settings);
     engine.evaluate(stack, p0, Request::all())
 }
 

@@ -17,6 +17,7 @@ pub mod plot;
 pub mod stack;
 pub mod sweep;
 pub mod verify;
+pub mod verify_stack;
 pub mod write;
 pub use check::{human, json, scene};
 pub use sweep::{SWEEP, sweep};

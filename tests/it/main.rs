@@ -41,3 +41,4 @@ mod tangential;
 mod topography;
 mod validity;
 mod verify_check;
+mod verify_stack;
