@@ -426,14 +426,29 @@ fn comparison_rows(
             sol.contact_pressure.mean,
         ),
     ];
-    let exact_only = |rows: &mut Vec<Row>, name: &str, s: &bem::FieldStats| {
-        for q in &s.quantiles {
-            rows.push(Row::new(format!("{name} q{}", q.prob), "Pa", None, q.value));
-        }
-        rows.push(Row::new(format!("{name} max"), "Pa", None, s.max));
-    };
     exact_only(&mut rows, "contact pressure", &sol.contact_pressure);
     exact_only(&mut rows, "interface sigma_n", &fields.normal_stats);
+    shear_rows(&mut rows, fields, tau_rms, bond, above);
+    rows
+}
+
+/// Rows of a field's quantiles and maximum, which Persson's theory does not give.
+pub(crate) fn exact_only(rows: &mut Vec<Row>, name: &str, s: &bem::FieldStats) {
+    for q in &s.quantiles {
+        rows.push(Row::new(format!("{name} q{}", q.prob), "Pa", None, q.value));
+    }
+    rows.push(Row::new(format!("{name} max"), "Pa", None, s.max));
+}
+
+/// The interface's |τ| rows: the field's quantiles beside Persson's Gaussian ones, its maximum,
+/// and the bond exceedance (errors propagated to first order from τ_rms's).
+pub(crate) fn shear_rows(
+    rows: &mut Vec<Row>,
+    fields: &InterfaceFields,
+    tau_rms: Option<Estimate>,
+    bond: Option<f64>,
+    above: Option<f64>,
+) {
     for q in &fields.shear_stats.quantiles {
         // Persson: |τ| half-normal with rms τ_rms, so the quantile at P is τ_peak(ε = 1 − P).
         let k = tau_peak(1.0, 1.0 - q.prob);
@@ -463,7 +478,6 @@ fn comparison_rows(
             f,
         ));
     }
-    rows
 }
 
 /// One quantity of `check --verify`: Persson's value beside the exact one.

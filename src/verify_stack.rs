@@ -23,12 +23,14 @@ use crate::bem::{
 };
 use crate::check::stack::StackDesign;
 use crate::check::{CheckKind, criteria};
-use crate::contact::{Engine, Request, StackContact, tau_exceedance, tau_peak};
+use crate::contact::{Engine, Request, StackContact};
 use crate::error::Error;
 use crate::layer::stack::{Layer, Stack};
 use crate::prec::{Estimate, Settings, Termination};
 use crate::topography::HeightMap;
-use crate::verify::{ExactCheck, Level, Row, converged, half, level, map_spectrum};
+use crate::verify::{
+    ExactCheck, Level, Row, converged, exact_only, half, level, map_spectrum, shear_rows,
+};
 use serde::Serialize;
 
 /// The exact fields at one interface of a stack.
@@ -386,14 +388,6 @@ pub fn compare(
     })
 }
 
-/// Rows of a field's quantiles and maximum that Persson's theory does not give.
-fn exact_only(rows: &mut Vec<Row>, name: &str, s: &FieldStats) {
-    for q in &s.quantiles {
-        rows.push(Row::new(format!("{name} q{}", q.prob), "Pa", None, q.value));
-    }
-    rows.push(Row::new(format!("{name} max"), "Pa", None, s.max));
-}
-
 /// The top surface's compared quantities.
 fn top_rows(sol: &BemSolution, theory: &StackContact) -> Vec<Row> {
     let area = theory.top.area_fraction;
@@ -416,8 +410,8 @@ fn top_rows(sol: &BemSolution, theory: &StackContact) -> Vec<Row> {
     rows
 }
 
-/// One interface's compared quantities: Persson's rms values, and his Gaussian quantiles of |τ|
-/// and the bond exceedance (errors propagated to first order from τ_rms's), against the field's.
+/// One interface's compared quantities: Persson's rms values beside the field's, the field's
+/// quantiles of σ_n, and the |τ| rows of the film's comparison (`verify::shear_rows`).
 fn interface_rows(
     fields: &InterfaceFields,
     sigma_rms: Option<Estimate>,
@@ -435,34 +429,6 @@ fn interface_rows(
         Row::new("tau_rms interface", "Pa", tau_rms, fields.shear_stats.rms),
     ];
     exact_only(&mut rows, "interface sigma_n", &fields.normal_stats);
-    for q in &fields.shear_stats.quantiles {
-        // Persson: |τ| half-normal with rms τ_rms, so the quantile at P is τ_peak(ε = 1 − P).
-        let k = tau_peak(1.0, 1.0 - q.prob);
-        let p = tau_rms.map(|t| t.map(|t| k * t, |_| k));
-        rows.push(Row::new(
-            format!("interface |tau| q{}", q.prob),
-            "Pa",
-            p,
-            q.value,
-        ));
-    }
-    rows.push(Row::new(
-        "interface |tau| max",
-        "Pa",
-        None,
-        fields.shear_stats.max,
-    ));
-    if let (Some(b), Some(f)) = (bond, above) {
-        rows.push(Row::new(
-            "area fraction |tau| > bond",
-            "",
-            tau_rms.map(|t| Estimate {
-                value: tau_exceedance(t.value, b),
-                err: (tau_exceedance(t.value + t.err, b) - tau_exceedance(t.value, b)).abs(),
-                status: t.status,
-            }),
-            f,
-        ));
-    }
+    shear_rows(&mut rows, fields, tau_rms, bond, above);
     rows
 }
