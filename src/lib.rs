@@ -36,5 +36,6 @@ pub mod tomlin;
 pub mod topography;
 pub mod units;
 pub mod verify;
+pub mod verify_stack;
 
 pub use error::Error;

@@ -21,6 +21,7 @@ use crate::scene::{RoughnessSource, Scene};
 use crate::topography::io::{HeightKind, MapOptions, read_height_map, sniff};
 use crate::topography::plausible::{edge_mismatch_map, periodic_warning};
 use crate::verify::Verification;
+use crate::verify_stack::{self, StackVerification};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -48,6 +49,14 @@ pub struct Exact {
     pub min_thickness: Option<ExactMinThickness>,
     /// The realisations of a scene without a height map.
     pub realisations: Option<Realisations>,
+}
+
+/// The exact check of `check --verify` on a layer stack: the height map and what the boundary
+/// elements found at every interface.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StackExact {
+    pub map: PathBuf,
+    pub verification: StackVerification,
 }
 
 /// The outcome of a film or of a layer stack.
@@ -144,8 +153,10 @@ pub struct Judged {
     pub read_warnings: Vec<String>,
     /// The version pin's, the readers' and the outcome's warnings.
     pub warnings: Vec<String>,
-    /// The exact check, when asked for.
+    /// The exact check of a film, when asked for.
     pub exact: Option<Exact>,
+    /// The exact check of a layer stack, when asked for.
+    pub stack_exact: Option<StackExact>,
     /// What alone would make a failing design pass (empty when it passes).
     pub levers: Vec<Lever>,
 }
@@ -162,7 +173,12 @@ impl Judged {
 
     /// Persson's checks pass, and the exact ones when they were made.
     pub fn pass(&self) -> bool {
-        self.outcome.pass() && self.exact.as_ref().is_none_or(|e| e.verification.pass)
+        self.outcome.pass()
+            && self.exact.as_ref().is_none_or(|e| e.verification.pass)
+            && self
+                .stack_exact
+                .as_ref()
+                .is_none_or(|e| e.verification.pass)
     }
 }
 
@@ -247,12 +263,6 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
 /// [`judge`] with the exact check's options: on the height map, or on realisations of the
 /// spectrum of a scene without one ([`crate::exact`]).
 pub fn judge_exact(scene: &Scene, exact: Option<&ExactOptions>) -> Result<Judged, Error> {
-    if exact.is_some() && scene.is_stack() {
-        return Err(Error::Value {
-            origin: "--verify".into(),
-            msg: "not available for a layer stack ([[layer]] tables) yet".into(),
-        });
-    }
     if exact.is_some() && !scene.roughness.more_files.is_empty() {
         return Err(Error::Value {
             origin: "--verify".into(),
@@ -304,12 +314,17 @@ pub fn judge_exact(scene: &Scene, exact: Option<&ExactOptions>) -> Result<Judged
     // The reading's warnings travel with the outcome into every report format.
     outcome.warnings_mut().splice(0..0, own_reads);
     let mut exact_warnings = Vec::new();
-    let exact = exact
-        .map(|opts| {
-            let film = outcome.film().expect("a stack is refused above");
-            exact_check(&scene, film, film.thickness, opts, &mut exact_warnings)
-        })
-        .transpose()?;
+    let (exact, stack_exact) = match (&outcome, exact) {
+        (_, None) => (None, None),
+        (Verdict::Film(film), Some(opts)) => {
+            let x = exact_check(&scene, film, film.thickness, opts, &mut exact_warnings)?;
+            (Some(x), None)
+        }
+        (Verdict::Stack(_), Some(opts)) => {
+            let x = stack_exact_check(&scene, opts, &mut exact_warnings)?;
+            (None, Some(x))
+        }
+    };
     outcome
         .warnings_mut()
         .extend(exact_warnings.iter().cloned());
@@ -332,7 +347,33 @@ pub fn judge_exact(scene: &Scene, exact: Option<&ExactOptions>) -> Result<Judged
         read_warnings,
         warnings,
         exact,
+        stack_exact,
         levers,
+    })
+}
+
+/// The exact check of `check --verify` on a layer stack: on the scene's height map, judged at
+/// every interface ([`crate::verify_stack`]).
+fn stack_exact_check(
+    scene: &Scene,
+    opts: &ExactOptions,
+    warnings: &mut Vec<String>,
+) -> Result<StackExact, Error> {
+    let RoughnessSource::Profile { path } = &scene.roughness.source else {
+        return Err(Error::Value {
+            origin: origin(scene),
+            msg: "--verify on a layer stack solves the contact on the measured surface: give \
+                  the roughness as a height map (roughness.profile or --profile), not as a \
+                  spectrum or a model"
+                .into(),
+        });
+    };
+    let (surface, mismatch) = scene_map(path)?;
+    warnings.extend(periodic_warning(path, mismatch));
+    let verification = verify_stack::verify(&surface, &scene.stack_design(), &opts.bem)?;
+    Ok(StackExact {
+        map: path.clone(),
+        verification,
     })
 }
 

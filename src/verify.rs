@@ -119,7 +119,7 @@ pub(crate) struct Solved {
 }
 
 /// The nearest-rank (1 − ε) quantile of `values` (reordered) and whether ε ≥ 1/N.
-fn level(values: &mut [f64], eps: f64) -> (f64, bool) {
+pub(crate) fn level(values: &mut [f64], eps: f64) -> (f64, bool) {
     let n = values.len();
     let nf = n as f64;
     let rank = (((1.0 - eps) * nf).ceil() as usize).clamp(1, n);
@@ -150,6 +150,13 @@ pub fn solve_warm(
         Some(start) => bem::solve_from(surface, stack, p0, settings, start)?,
         None => bem::solve(surface, stack, p0, settings)?,
     };
+    let sol = converged(surface, sol)?;
+    let fields = bem::interface_fields(&sol, stack)?;
+    Ok((sol, fields))
+}
+
+/// A solve that did not converge as an error (nothing is judged on it).
+pub(crate) fn converged(surface: &Surface, sol: BemSolution) -> Result<BemSolution, Error> {
     let c = &sol.convergence;
     if c.status != Termination::Converged {
         return Err(Error::Numerical {
@@ -166,8 +173,7 @@ pub fn solve_warm(
             ),
         });
     }
-    let fields = bem::interface_fields(&sol, stack)?;
-    Ok((sol, fields))
+    Ok(sol)
 }
 
 /// One solve of `design` on `stack` (warm-started from `start` when given) and its numbers.
@@ -356,7 +362,7 @@ pub struct Row {
 }
 
 impl Row {
-    fn new(
+    pub(crate) fn new(
         name: impl Into<String>,
         unit: &'static str,
         persson: Option<Estimate>,
@@ -399,6 +405,19 @@ pub struct Comparison {
     pub area_fraction_half: Option<f64>,
 }
 
+/// The map's own spectrum (periodic, no window, all wavelengths down to the Nyquist limit, as
+/// the boundary elements see them).
+pub(crate) fn map_spectrum(map: &HeightMap) -> Result<Spectrum, Error> {
+    let psd = map_psd(
+        map,
+        &PsdOptions {
+            cutoff_pixels: 2.0,
+            ..PsdOptions::default()
+        },
+    )?;
+    Ok(Spectrum::Tabulated(psd.c2d))
+}
+
 /// Persson's estimate on the map's own spectrum (periodic, no window, all wavelengths down to
 /// the Nyquist limit, as the boundary elements see them).
 pub fn persson(
@@ -409,19 +428,6 @@ pub fn persson(
 ) -> Result<Contact, Error> {
     let engine = Engine::new(&map_spectrum(map)?, settings);
     engine.evaluate(stack, p0, Request::all())
-}
-
-/// The map's own spectrum as Persson's theory sees it (periodic, no window, down to the
-/// Nyquist limit).
-fn map_spectrum(map: &HeightMap) -> Result<Spectrum, Error> {
-    let psd = map_psd(
-        map,
-        &PsdOptions {
-            cutoff_pixels: 2.0,
-            ..PsdOptions::default()
-        },
-    )?;
-    Ok(Spectrum::Tabulated(psd.c2d))
 }
 
 /// Solve the contact on `map` (one period of a periodic surface) at nominal pressure `p0` and
@@ -509,14 +515,29 @@ fn comparison_rows(
             sol.contact_pressure.mean,
         ),
     ];
-    let exact_only = |rows: &mut Vec<Row>, name: &str, s: &bem::FieldStats| {
-        for q in &s.quantiles {
-            rows.push(Row::new(format!("{name} q{}", q.prob), "Pa", None, q.value));
-        }
-        rows.push(Row::new(format!("{name} max"), "Pa", None, s.max));
-    };
     exact_only(&mut rows, "contact pressure", &sol.contact_pressure);
     exact_only(&mut rows, "interface sigma_n", &fields.normal_stats);
+    shear_rows(&mut rows, fields, tau_rms, bond, above);
+    rows
+}
+
+/// Rows of a field's quantiles and maximum, which Persson's theory does not give.
+pub(crate) fn exact_only(rows: &mut Vec<Row>, name: &str, s: &bem::FieldStats) {
+    for q in &s.quantiles {
+        rows.push(Row::new(format!("{name} q{}", q.prob), "Pa", None, q.value));
+    }
+    rows.push(Row::new(format!("{name} max"), "Pa", None, s.max));
+}
+
+/// The interface's |τ| rows: the field's quantiles beside Persson's Gaussian ones, its maximum,
+/// and the bond exceedance (errors propagated to first order from τ_rms's).
+pub(crate) fn shear_rows(
+    rows: &mut Vec<Row>,
+    fields: &InterfaceFields,
+    tau_rms: Option<Estimate>,
+    bond: Option<f64>,
+    above: Option<f64>,
+) {
     for q in &fields.shear_stats.quantiles {
         // Persson: |τ| half-normal with rms τ_rms, so the quantile at P is τ_peak(ε = 1 − P).
         let k = tau_peak(1.0, 1.0 - q.prob);
@@ -546,7 +567,6 @@ fn comparison_rows(
             f,
         ));
     }
-    rows
 }
 
 /// One quantity of `check --verify`: Persson's value beside the exact one.

@@ -11,10 +11,7 @@ use coatcheck::scene::Scene;
 
 /// The options a stack check does not take (yet), by flag.
 pub fn refuse(args: &CheckArgs) -> Result<(), Error> {
-    let given = [
-        ("--verify", args.verify),
-        ("--parquet", args.parquet.is_some()),
-    ];
+    let given = [("--parquet", args.parquet.is_some())];
     match given.iter().find(|(_, on)| *on) {
         Some((what, _)) => Err(Error::Value {
             origin: what.to_string(),

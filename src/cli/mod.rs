@@ -13,6 +13,7 @@ mod response;
 mod response_stack;
 mod synth;
 mod verify;
+mod verify_stack;
 
 #[derive(Parser)]
 #[command(

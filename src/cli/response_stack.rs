@@ -12,7 +12,7 @@ use comfy_table::{Table, presets::UTF8_FULL};
 const Q_MAX: f64 = 1e15;
 
 /// One `--layer E,nu,d`.
-fn layer(text: &str) -> Result<Layer, Error> {
+pub(super) fn layer(text: &str) -> Result<Layer, Error> {
     let parts: Vec<&str> = text.split(',').collect();
     let [e, nu, d] = parts.as_slice() else {
         return Err(Error::invalid(

@@ -3,6 +3,7 @@
 //! map's power spectrum, and the interface stresses at z = d.
 //!
 //! Arguments to [`coatcheck::verify::compare`]; the output is [`coatcheck::report::verify`]'s.
+//! With `--layer` (a layer stack, top first) the same on the stack: [`super::verify_stack`].
 //! Exit codes: 0 done (and no pixel's |τ| above `--bond-strength`), 1 the bond strength is
 //! exceeded somewhere, 2 bad input or a solve that did not converge (nothing is written then).
 
@@ -15,6 +16,7 @@ use coatcheck::report::{
     verify::{VerifyInputs, sliding_json, sliding_note, verify_json, verify_table, write_fields},
 };
 use coatcheck::scene::Key;
+use coatcheck::topography::HeightMap;
 use coatcheck::topography::io::{MapOptions, read_height_map};
 use coatcheck::units::{Dim, parse_quantity};
 use coatcheck::verify::compare;
@@ -25,6 +27,8 @@ use std::path::PathBuf;
 pub enum FormatArg {
     Table,
     Json,
+    /// One row per compared quantity (layer stacks, `--layer`).
+    Csv,
 }
 
 /// Exact contact on a height map (treated as one period of a periodic surface), beside
@@ -39,14 +43,18 @@ pub struct VerifyArgs {
     /// or the file's `# coatcheck height map: ...` comment says otherwise.
     pub map: PathBuf,
     /// Film: Young's modulus and Poisson ratio, e.g. `1MPa,0.5`.
+    #[arg(long, required_unless_present = "layer", conflicts_with = "layer")]
+    pub film: Option<String>,
+    /// A layer of a stack, top first: Young's modulus, Poisson ratio and thickness, e.g.
+    /// `1MPa,0.5,10um` (repeat for every layer; instead of --film and --thickness).
     #[arg(long)]
-    pub film: String,
+    pub layer: Vec<String>,
     /// Substrate: Young's modulus and Poisson ratio, e.g. `200GPa,0.3`.
     #[arg(long)]
     pub substrate: String,
     /// Film thickness, e.g. `50um`.
-    #[arg(long)]
-    pub thickness: String,
+    #[arg(long, required_unless_present = "layer", conflicts_with = "layer")]
+    pub thickness: Option<String>,
     /// Nominal pressure p0, e.g. `0.1MPa`.
     #[arg(long)]
     pub pressure: String,
@@ -59,7 +67,8 @@ pub struct VerifyArgs {
     /// Unit of the heights (m, um, nm).
     #[arg(long)]
     pub height_unit: Option<String>,
-    /// Interface bond strength in shear: reports the area fraction where |τ| exceeds it.
+    /// Interface bond strength in shear: reports the area fraction where |τ| exceeds it (at
+    /// every interface of a stack).
     #[arg(long, allow_hyphen_values = true)]
     pub bond_strength: Option<String>,
     /// Write the fields (x, y, height, pressure, gap, interface σ_n, τ_x, τ_y, |τ|) as CSV
@@ -93,13 +102,18 @@ const GAP_TOL_MAX: f64 = 1e-2;
 /// hours on a large map; the default converges well within it.
 const MAX_ITER: usize = 1_000_000;
 
-fn quantity(flag: &'static str, s: &str, dim: Dim, expected: &'static str) -> Result<f64, Error> {
+pub(super) fn quantity(
+    flag: &'static str,
+    s: &str,
+    dim: Dim,
+    expected: &'static str,
+) -> Result<f64, Error> {
     parse_quantity(s, dim).map_err(|e| Error::invalid(flag, format!("'{s}' ({e})"), expected))
 }
 
 /// `E,nu`: the modulus within the scene's range for `modulus`, the ratio checked by
 /// [`Elastic::new`].
-fn material(flag: &'static str, s: &str, modulus: Key) -> Result<Elastic, Error> {
+pub(super) fn material(flag: &'static str, s: &str, modulus: Key) -> Result<Elastic, Error> {
     const EXPECTED: &str = "E,nu with E a pressure (e.g. 1MPa,0.5)";
     let (e, nu) = s
         .split_once(',')
@@ -109,11 +123,20 @@ fn material(flag: &'static str, s: &str, modulus: Key) -> Result<Elastic, Error>
     Elastic::new(e, nu)
 }
 
-/// Run `coatcheck verify`; returns the exit code or an error (exit code 2).
-pub fn run(a: VerifyArgs) -> Result<i32, Error> {
-    let film = material("--film", &a.film, Key::FilmYoungsModulus)?;
-    let substrate = material("--substrate", &a.substrate, Key::SubstrateYoungsModulus)?;
-    let d = Key::Thickness.parse_flag("--thickness", &a.thickness)?;
+/// What `verify` takes besides the solid: the load, the bond strength, the solver's and
+/// Persson's settings, and the map.
+pub(super) struct Inputs {
+    pub p0: f64,
+    pub bond: Option<f64>,
+    pub settings: BemSettings,
+    pub rtol: f64,
+    /// The friction coefficient (0 without friction).
+    pub mu: f64,
+    pub map: HeightMap,
+}
+
+/// The flags of [`Inputs`], checked, and the map read.
+pub(super) fn inputs(a: &VerifyArgs) -> Result<Inputs, Error> {
     let p0 = Key::Pressure.parse_flag("--pressure", &a.pressure)?;
     let bond = a
         .bond_strength
@@ -158,11 +181,55 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
         .transpose()?
         .unwrap_or(0.0);
     let map = read_height_map(&a.map, &opts)?;
-    let stack = Stack::new(Bilayer::new(film, substrate), d)?;
     let settings = BemSettings {
         gap_tol: a.gap_tol,
         max_iter: a.max_iter,
     };
+    Ok(Inputs {
+        p0,
+        bond,
+        settings,
+        rtol,
+        mu,
+        map,
+    })
+}
+
+/// Run `coatcheck verify`; returns the exit code or an error (exit code 2).
+pub fn run(a: VerifyArgs) -> Result<i32, Error> {
+    if !a.layer.is_empty() {
+        if a.friction.is_some() {
+            return Err(Error::Value {
+                origin: "--friction".into(),
+                msg: "not available for a layer stack (--layer)".into(),
+            });
+        }
+        return super::verify_stack::run(&a);
+    }
+    const CLAP: &str = "clap requires --film and --thickness without --layer";
+    let film = material(
+        "--film",
+        a.film.as_deref().expect(CLAP),
+        Key::FilmYoungsModulus,
+    )?;
+    let substrate = material("--substrate", &a.substrate, Key::SubstrateYoungsModulus)?;
+    let d = Key::Thickness.parse_flag("--thickness", a.thickness.as_deref().expect(CLAP))?;
+    if a.format == FormatArg::Csv {
+        return Err(Error::invalid(
+            "--format",
+            "csv",
+            "table or json (csv is written for a layer stack, --layer)",
+        ));
+    }
+    let Inputs {
+        p0,
+        bond,
+        settings,
+        rtol,
+        mu,
+        map,
+    } = inputs(&a)?;
+    let stack = Stack::new(Bilayer::new(film, substrate), d)?;
     let (c, sliding) = if mu > 0.0 {
         let s = compare_sliding(&map, &stack, (p0, mu), &settings, Settings { rtol }, bond)?;
         (s.comparison, Some((s.exact, s.persson)))
@@ -186,7 +253,8 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
         table += &sliding_note(&s.0, &s.1);
     }
     report::stdout(&match a.format {
-        FormatArg::Table => table,
+        // CSV was refused above.
+        FormatArg::Table | FormatArg::Csv => table,
         FormatArg::Json => {
             // JSON shows NaN as null: the table of the same numbers is checked instead.
             report::finite_only(&table)?;

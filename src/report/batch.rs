@@ -202,6 +202,12 @@ impl Record {
             r.verify_min_thickness_m_err = d.map(|d| d.err);
             r.verify_realisations = x.realisations.as_ref().map(|r| r.count);
         }
+        if let Some(x) = &j.stack_exact {
+            let v = &x.verification;
+            r.verify_verdict = Some(if v.pass { "pass" } else { "fail" });
+            r.verify_area_fraction = Some(v.area_fraction.value);
+            r.verify_mean_contact_pressure_pa = Some(v.mean_contact_pressure.value);
+        }
         r
     }
 

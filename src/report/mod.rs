@@ -19,6 +19,7 @@ pub mod stack;
 pub mod stack_sweep;
 pub mod sweep;
 pub mod verify;
+pub mod verify_stack;
 pub mod write;
 pub use check::{human, json, scene};
 pub use sweep::{SWEEP, sweep};

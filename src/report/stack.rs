@@ -28,11 +28,29 @@ use serde_json::{Map, Value, json};
 pub fn scene(j: &Judged, o: &StackOutcome, format: Format) -> Result<String, Error> {
     let scene = &j.scene;
     Ok(match format {
-        Format::Table => format!("{}{}", batch::files_table(j), human(scene, o, &j.levers)),
+        Format::Table => {
+            let mut t = format!("{}{}", batch::files_table(j), human(scene, o, &j.levers));
+            if let Some(x) = &j.stack_exact {
+                t += &format!(
+                    "\n{}",
+                    super::verify_stack::check_table(&x.map, o, &x.verification)
+                );
+            }
+            t
+        }
         Format::Json => {
             // JSON shows NaN as null: the table of the same numbers is checked instead.
             super::finite_only(&human(scene, o, &j.levers))?;
             let mut v = json(scene, o, &j.levers);
+            if let Some(x) = &j.stack_exact {
+                super::finite_only(&super::verify_stack::check_table(
+                    &x.map,
+                    o,
+                    &x.verification,
+                ))?;
+                v["verify"] = super::verify_stack::check_json(&x.map, o, &x.verification);
+                v["verdict_with_verify"] = json!(if j.pass() { "pass" } else { "fail" });
+            }
             if !j.files.is_empty() {
                 let worst = j.worst_file().map(|p| p.display().to_string());
                 v["worst_file"] = json!(worst);

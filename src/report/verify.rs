@@ -25,7 +25,7 @@ pub struct VerifyInputs<'a> {
     pub bond: Option<f64>,
 }
 
-fn stats_json(s: &FieldStats) -> Value {
+pub(super) fn stats_json(s: &FieldStats) -> Value {
     json!({
         "mean": s.mean,
         "rms": s.rms,
@@ -174,7 +174,7 @@ pub fn sliding_json(e: &ExactSliding, p: &SlidingShear) -> Value {
 
 /// The boundary-element solver's convergence (lengths in m), as `verify` and `check --verify`
 /// write it.
-fn solver_json(c: &Convergence, seconds: f64) -> Value {
+pub(super) fn solver_json(c: &Convergence, seconds: f64) -> Value {
     json!({
         "iterations": c.iterations,
         "restarts": c.restarts,

@@ -44,3 +44,4 @@ mod topography;
 mod validity;
 mod verify_check;
 mod verify_sliding;
+mod verify_stack;

@@ -1,0 +1,485 @@
+//! Output of the exact solver on a layer stack ([`crate::verify_stack`]): `coatcheck verify
+//! --layer` (tables, JSON, CSV, the fields at every interface) and the exact section of `check
+//! --verify` on a `[[layer]]` scene (tables in MPa with 4 significant digits, JSON).
+//!
+//! JSON of `verify --layer` (`verify.schema.json`): the film's keys with `thickness_m` the
+//! depth of the bottom interface and the film's interface keys (`interface_normal_pa`,
+//! `interface_shear_abs_pa`, `shear_fraction_above_bond`) those of the bottom interface, as the
+//! stack check does; `comparison` the top surface's rows then the bottom interface's; `layers`
+//! (top first) and `interfaces`, each with `name`, `depth_m`, its field statistics and its own
+//! `comparison`.
+//!
+//! The `check --verify` section (`check.schema.json`, `verify`): the film's keys for the top
+//! surface and the contact, `interfaces` like the check's (`name`, `depth_m`, `sigma_rms_pa`,
+//! `tau_rms_pa`, `tau_peak_pa`, `sigma_peak_pa`, `bond_exceedance`, each with `_err` and
+//! `persson_` beside it, then `bond_strength_pa`, `sigma_max_pa`, `tau_max_pa`, the field
+//! statistics and `peaks_resolved`), the checks with `at`, the solver and the exact verdict.
+
+use super::verify::{solver_json, stats_json};
+use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
+use crate::bem::{BemSolution, InterfaceFields, Surface};
+use crate::check::stack::StackOutcome;
+use crate::error::Error;
+use crate::layer::stack::Stack;
+use crate::prec::Estimate;
+use crate::verify::Row;
+use crate::verify_stack::{StackComparison, StackVerification};
+use serde_json::{Map, Value, json};
+use std::io::Write;
+use std::path::Path;
+
+/// What `coatcheck verify --layer` was asked: the map file, the stack, the layers' names (top
+/// first), the load and the bond strength every interface is measured against.
+pub struct StackVerifyInputs<'a> {
+    pub map: &'a Path,
+    pub stack: &'a Stack,
+    pub names: &'a [String],
+    pub p0: f64,
+    pub bond: Option<f64>,
+}
+
+/// Stresses in MPa, the rest as they are.
+fn scaled(r: &Row, x: f64) -> f64 {
+    if r.unit == "Pa" { x * 1e-6 } else { x }
+}
+
+fn rows_table(t: &mut comfy_table::Table, at: &str, rows: &[Row]) {
+    for r in rows {
+        t.add_row(vec![
+            at.to_string(),
+            r.name.clone(),
+            if r.unit == "Pa" { "MPa" } else { r.unit }.to_string(),
+            r.persson.map_or("-".into(), |p| sig(scaled(r, p.value), 4)),
+            r.persson.map_or("-".into(), |p| sig(scaled(r, p.err), 2)),
+            sig(scaled(r, r.exact), 4),
+            r.ratio().map_or("-".into(), |v| sig(v, 3)),
+        ]);
+    }
+}
+
+/// `coatcheck verify --layer`'s tables: the scene and the layers, then Persson beside the
+/// exact contact at the top and at every interface.
+pub fn verify_table(i: &StackVerifyInputs, c: &StackComparison) -> String {
+    let (s, sol) = (&c.surface, &c.solution);
+    let mut scene = table(&["scene", "value"]);
+    scene.add_row(vec![
+        "height map".into(),
+        format!(
+            "{} ({} x {}, pixel {} x {} µm)",
+            i.map.display(),
+            s.nx,
+            s.ny,
+            um(s.dx),
+            um(s.dy)
+        ),
+    ]);
+    scene.add_row(vec![
+        "h_rms, rms slope".into(),
+        format!("{} µm, {}", um(sol.h_rms), sig(s.rms_slope(), 4)),
+    ]);
+    for ((l, name), ic) in i.stack.layers().iter().zip(i.names).zip(&c.interfaces) {
+        scene.add_row(vec![
+            name.clone(),
+            format!(
+                "E = {}, nu = {}, {} µm (interface at {} µm, q_L z = {})",
+                modulus(l.material.youngs),
+                l.material.poisson,
+                um(l.thickness),
+                um(ic.depth),
+                sig(s.q_low() * ic.depth, 4)
+            ),
+        ]);
+    }
+    let sub = i.stack.substrate();
+    scene.add_row(vec![
+        "substrate".into(),
+        format!("E = {}, nu = {}", modulus(sub.youngs), sub.poisson),
+    ]);
+    scene.add_row(vec!["pressure p0".into(), format!("{} MPa", mpa(i.p0))]);
+    let v = &sol.convergence;
+    scene.add_row(vec![
+        "solver".into(),
+        format!(
+            "{:?} after {} iterations in {:.2} s (rms gap in contact {:.2e} µm, penetration \
+             {:.2e} µm, tolerance {:.2e} µm)",
+            v.status,
+            v.iterations,
+            c.seconds,
+            v.gap_rms_in_contact * 1e6,
+            v.max_penetration * 1e6,
+            v.tolerance * 1e6
+        ),
+    ]);
+    let mut t = table(&[
+        "at",
+        "quantity",
+        "unit",
+        "Persson",
+        "Persson err",
+        "exact (BEM)",
+        "exact/Persson",
+    ]);
+    rows_table(&mut t, "top", &c.rows);
+    for (name, ic) in i.names.iter().zip(&c.interfaces) {
+        rows_table(&mut t, name, &ic.rows);
+    }
+    format!(
+        "{scene}\n{t}\n{}\n",
+        wrap(&format!(
+            "at: the top surface, or the interface below the named layer. A/A0 counts pixels in \
+             contact (±{:.1e} from the solver tolerance); refine the map to see the \
+             discretisation error. Quantiles: contact pressure over the contact area, interface \
+             stresses over the whole interface.",
+            sol.area_fraction.err
+        ))
+    )
+}
+
+fn rows_json(rows: &[Row]) -> Vec<Value> {
+    rows.iter()
+        .map(|r| {
+            json!({
+                "quantity": r.name, "unit": r.unit,
+                "persson": r.persson.map(|p| p.value),
+                "persson_err": r.persson.map(|p| p.err),
+                "exact": r.exact, "ratio": r.ratio(),
+            })
+        })
+        .collect()
+}
+
+/// `coatcheck verify --layer`'s JSON object (module docs).
+pub fn verify_json(i: &StackVerifyInputs, c: &StackComparison) -> Value {
+    let (surface, sol, theory) = (&c.surface, &c.solution, &c.persson);
+    let bottom = c.interfaces.last().expect("a stack has an interface");
+    let bottom_fields = c.fields.last().expect("a stack has an interface");
+    let z = bottom.depth;
+    let mut comparison = rows_json(&c.rows);
+    comparison.extend(rows_json(&bottom.rows));
+    let layers: Vec<Value> = i
+        .stack
+        .layers()
+        .iter()
+        .zip(i.names)
+        .map(|(l, name)| {
+            json!({
+                "name": name, "youngs_modulus_pa": l.material.youngs,
+                "poisson_ratio": l.material.poisson, "thickness_m": l.thickness,
+            })
+        })
+        .collect();
+    let interfaces: Vec<Value> = c
+        .interfaces
+        .iter()
+        .zip(&c.fields)
+        .zip(i.names)
+        .map(|((ic, f), name)| {
+            json!({
+                "name": name, "depth_m": ic.depth, "q_low_z": surface.q_low() * ic.depth,
+                "normal_pa": stats_json(&f.normal_stats),
+                "shear_abs_pa": stats_json(&f.shear_stats),
+                "shear_fraction_above_bond": ic.above_bond,
+                "comparison": rows_json(&ic.rows),
+            })
+        })
+        .collect();
+    json!({
+        "schema_version": super::SCHEMA_VERSION,
+        "coatcheck_version": env!("CARGO_PKG_VERSION"),
+        "map": i.map.display().to_string(),
+        "nx": surface.nx, "ny": surface.ny, "dx_m": surface.dx, "dy_m": surface.dy,
+        "h_rms_m": sol.h_rms, "rms_slope": surface.rms_slope(), "q_low_per_m": surface.q_low(),
+        "q_low_d": surface.q_low() * z,
+        "thickness_m": z, "pressure_pa": i.p0,
+        "solver": solver_json(&sol.convergence, c.seconds),
+        "area_fraction": sol.area_fraction.value,
+        "area_fraction_err": sol.area_fraction.err,
+        "persson_area_fraction": theory.top.area_fraction.value,
+        "persson_area_fraction_err": theory.top.area_fraction.err,
+        "sigma_rms_top_pa": sol.sigma_rms_top,
+        "contact_pressure_pa": stats_json(&sol.contact_pressure),
+        "interface_normal_pa": stats_json(&bottom_fields.normal_stats),
+        "interface_shear_abs_pa": stats_json(&bottom_fields.shear_stats),
+        "bond_strength_pa": i.bond,
+        "shear_fraction_above_bond": bottom.above_bond,
+        "comparison": comparison,
+        "layers": layers,
+        "interfaces": interfaces,
+    })
+}
+
+/// A CSV cell: the number in full precision, empty when there is none.
+fn cell(x: Option<f64>) -> String {
+    x.map_or(String::new(), |x| format!("{x:e}"))
+}
+
+/// `coatcheck verify --layer --format csv`: one row per compared quantity, `at` (`top` or the
+/// layer above the interface), `depth_m`, then the columns of the comparison (SI units).
+pub fn verify_csv(i: &StackVerifyInputs, c: &StackComparison) -> String {
+    let mut out = String::from("at,depth_m,quantity,unit,persson,persson_err,exact,ratio\n");
+    let mut put = |at: &str, depth: f64, rows: &[Row]| {
+        for r in rows {
+            out += &format!(
+                "{},{depth:e},{},{},{},{},{:e},{}\n",
+                at.replace([',', '"', '\n'], " "),
+                r.name,
+                r.unit,
+                cell(r.persson.map(|p| p.value)),
+                cell(r.persson.map(|p| p.err)),
+                r.exact,
+                cell(r.ratio())
+            );
+        }
+    };
+    put("top", 0.0, &c.rows);
+    for (name, ic) in i.names.iter().zip(&c.interfaces) {
+        put(name, ic.depth, &ic.rows);
+    }
+    out
+}
+
+/// The fields of a solve on a stack as CSV: x, y, height, pressure, gap, then at every interface
+/// k (top first) σ_n, τ_x, τ_y, |τ| (`sigma_n_1_pa,tau_x_1_pa,tau_y_1_pa,tau_abs_1_pa, …`).
+pub fn write_fields(
+    path: &Path,
+    s: &Surface,
+    sol: &BemSolution,
+    fields: &[InterfaceFields],
+) -> Result<(), Error> {
+    super::write_with(path, |w: &mut dyn Write| {
+        write!(w, "x_m,y_m,height_m,pressure_pa,gap_m")?;
+        for k in 1..=fields.len() {
+            write!(
+                w,
+                ",sigma_n_{k}_pa,tau_x_{k}_pa,tau_y_{k}_pa,tau_abs_{k}_pa"
+            )?;
+        }
+        writeln!(w)?;
+        for iy in 0..s.ny {
+            for ix in 0..s.nx {
+                let i = iy * s.nx + ix;
+                write!(
+                    w,
+                    "{:e},{:e},{:e},{:e},{:e}",
+                    ix as f64 * s.dx,
+                    iy as f64 * s.dy,
+                    s.heights[i],
+                    sol.pressure[i],
+                    sol.gap[i]
+                )?;
+                for f in fields {
+                    write!(
+                        w,
+                        ",{:e},{:e},{:e},{:e}",
+                        f.normal[i],
+                        f.shear_x[i],
+                        f.shear_y[i],
+                        f.shear_magnitude(i)
+                    )?;
+                }
+                writeln!(w)?;
+            }
+        }
+        Ok(())
+    })
+}
+
+/// One quantity of `check --verify` on a stack: its name, report key, Persson's value and the
+/// exact one.
+type CheckRow = (&'static str, &'static str, Option<Estimate>, Estimate);
+
+/// The top surface's quantities, Persson's beside the exact ones.
+fn top_rows(o: &StackOutcome, v: &StackVerification) -> Vec<CheckRow> {
+    let c = &o.contact.top;
+    vec![
+        (
+            "A/A0",
+            "area_fraction",
+            Some(c.area_fraction),
+            v.area_fraction,
+        ),
+        (
+            "mean contact pressure",
+            "mean_contact_pressure_pa",
+            Some(o.mean_contact_pressure),
+            v.mean_contact_pressure,
+        ),
+        (
+            "sigma_rms top",
+            "sigma_rms_top_pa",
+            c.sigma_rms_top,
+            v.sigma_rms_top,
+        ),
+    ]
+}
+
+/// Interface k's quantities, Persson's beside the exact ones.
+fn interface_rows(o: &StackOutcome, v: &StackVerification, k: usize) -> Vec<CheckRow> {
+    let (p, e) = (&o.interfaces[k], &v.interfaces[k]);
+    vec![
+        ("sigma_rms", "sigma_rms_pa", Some(p.sigma_rms), e.sigma_rms),
+        ("tau_rms", "tau_rms_pa", Some(p.tau_rms), e.tau_rms),
+        (
+            "tau_peak",
+            "tau_peak_pa",
+            Some(p.tau_peak),
+            e.tau_peak.value,
+        ),
+        (
+            "sigma_peak",
+            "sigma_peak_pa",
+            Some(p.sigma_peak),
+            e.sigma_peak.value,
+        ),
+        (
+            "P(|tau| > bond strength)",
+            "bond_exceedance",
+            Some(Estimate::exact(p.bond_exceedance)),
+            e.bond_exceedance,
+        ),
+    ]
+}
+
+/// A value in the table's units (MPa for a `_pa` key).
+fn show(key: &str, x: f64) -> String {
+    if key.ends_with("_pa") {
+        format!("{} MPa", sig(x * 1e-6, 4))
+    } else {
+        sig(x, 4)
+    }
+}
+
+fn add_rows(t: &mut comfy_table::Table, at: &str, rows: Vec<CheckRow>) {
+    for (name, key, p, e) in rows {
+        let ratio = p
+            .filter(|p| p.value != 0.0)
+            .map_or("-".into(), |p| sig(e.value / p.value, 3));
+        t.add_row(vec![
+            at.to_string(),
+            name.to_string(),
+            p.map_or("-".into(), |p| show(key, p.value)),
+            show(key, e.value),
+            show(key, e.err),
+            ratio,
+        ]);
+    }
+}
+
+/// The `check --verify` section of a stack as tables (MPa, 4 significant digits).
+pub fn check_table(map: &Path, o: &StackOutcome, v: &StackVerification) -> String {
+    let mut out = wrap(&format!(
+        "exact check on the height map {} ({} x {} pixels, q_L z = {} at the bottom interface; \
+         boundary elements with the stack's kernels, {} iterations; error = difference to the \
+         same map at half resolution)",
+        map.display(),
+        v.nx,
+        v.ny,
+        sig(v.q_low_z, 3),
+        v.convergence.iterations
+    ));
+    out.push('\n');
+    let mut t = table(&[
+        "at",
+        "quantity",
+        "Persson",
+        "exact (BEM)",
+        "error estimate",
+        "exact/Persson",
+    ]);
+    add_rows(&mut t, "top", top_rows(o, v));
+    for (k, i) in v.interfaces.iter().enumerate() {
+        add_rows(&mut t, &i.name, interface_rows(o, v, k));
+    }
+    out += &format!("{t}\n");
+    let mut c = table(&[
+        "check (exact)",
+        "at",
+        "value",
+        "limit",
+        "utilisation",
+        "margin",
+        "result",
+    ]);
+    for sc in &v.checks {
+        let ch = &sc.check;
+        let mut result = if ch.pass { "PASS" } else { "FAIL" }.to_string();
+        if !ch.resolved {
+            result += " (map maximum)";
+        }
+        c.add_row(vec![
+            ch.kind.name().to_string(),
+            sc.at.clone(),
+            show("_pa", ch.value.value),
+            format!("<= {}", show("_pa", ch.limit)),
+            utilisation_cell(Some(ch.margin)),
+            margin_cell(Some(ch.margin)),
+            result,
+        ]);
+    }
+    out += &format!("{c}\n");
+    out += &wrap(&format!(
+        "exact verdict: {}; with --verify the stack passes only if both Persson's and the exact \
+         checks pass (min-thickness is judged by Persson's theory only; map maximum: epsilon < \
+         1/pixels, the level is the field's maximum)",
+        if v.pass { "PASS" } else { "FAIL" }
+    ));
+    out.push('\n');
+    out
+}
+
+fn put_rows(m: &mut Map<String, Value>, rows: Vec<CheckRow>) {
+    for (_, key, p, e) in rows {
+        m.insert(key.into(), json!(e.value));
+        m.insert(format!("{key}_err"), json!(e.err));
+        m.insert(format!("persson_{key}"), json!(p.map(|p| p.value)));
+    }
+}
+
+/// The `check --verify` section of a stack as a JSON value (module docs).
+pub fn check_json(map: &Path, o: &StackOutcome, v: &StackVerification) -> Value {
+    let mut m = Map::new();
+    m.insert("map".into(), json!(map.display().to_string()));
+    m.insert("nx".into(), json!(v.nx));
+    m.insert("ny".into(), json!(v.ny));
+    m.insert("q_low_d".into(), json!(v.q_low_z));
+    put_rows(&mut m, top_rows(o, v));
+    let interfaces: Vec<Value> = v
+        .interfaces
+        .iter()
+        .enumerate()
+        .map(|(k, i)| {
+            let mut e = Map::new();
+            e.insert("name".into(), json!(i.name));
+            e.insert("depth_m".into(), json!(i.depth));
+            put_rows(&mut e, interface_rows(o, v, k));
+            e.insert("bond_strength_pa".into(), json!(i.bond_strength));
+            e.insert("sigma_max_pa".into(), json!(i.normal.max));
+            e.insert("tau_max_pa".into(), json!(i.shear.max));
+            e.insert("normal_pa".into(), stats_json(&i.normal));
+            e.insert("shear_abs_pa".into(), stats_json(&i.shear));
+            e.insert("peaks_resolved".into(), json!(i.tau_peak.resolved));
+            Value::Object(e)
+        })
+        .collect();
+    m.insert("interfaces".into(), Value::Array(interfaces));
+    let checks: Vec<Value> = v
+        .checks
+        .iter()
+        .map(|sc| {
+            let c = &sc.check;
+            json!({
+                "name": c.kind.name(), "at": sc.at, "value": c.value.value,
+                "value_err": c.value.err, "unit": "Pa", "limit": c.limit,
+                "utilisation": 1.0 - c.margin, "margin": c.margin, "pass": c.pass,
+                "resolved": c.resolved,
+            })
+        })
+        .collect();
+    m.insert("checks".into(), Value::Array(checks));
+    m.insert("solver".into(), solver_json(&v.convergence, v.seconds));
+    m.insert(
+        "verdict".into(),
+        json!(if v.pass { "pass" } else { "fail" }),
+    );
+    Value::Object(m)
+}
