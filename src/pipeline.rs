@@ -9,6 +9,7 @@
 
 use crate::bem::{BemSettings, Surface};
 use crate::check::levers::{Lever, levers};
+use crate::check::robust::{self, Robust};
 use crate::check::{CheckKind, Checker, Outcome};
 use crate::error::Error;
 use crate::scene::{RoughnessSource, Scene};
@@ -52,6 +53,8 @@ pub struct Judged {
     pub exact: Option<Exact>,
     /// What alone would make a failing design pass (empty when it passes).
     pub levers: Vec<Lever>,
+    /// The design at the worst corner of its materials' ranges (`--robust`), on the worst file.
+    pub robust: Option<Robust>,
 }
 
 impl Judged {
@@ -64,9 +67,11 @@ impl Judged {
         }
     }
 
-    /// Persson's checks pass, and the exact ones when they were made.
+    /// Persson's checks pass, and the exact ones and the robust ones when they were made.
     pub fn pass(&self) -> bool {
-        self.outcome.pass && self.exact.as_ref().is_none_or(|e| e.verification.pass)
+        self.outcome.pass
+            && self.exact.as_ref().is_none_or(|e| e.verification.pass)
+            && self.robust.as_ref().is_none_or(|r| r.pass)
     }
 }
 
@@ -187,6 +192,10 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
         let (spectrum, _) = scene.roughness.spectrum()?;
         levers(&spectrum, &scene.design(), scene.settings, &outcome)?
     };
+    let robust = scene
+        .robust
+        .then(|| robust::judge_scene(&scene, thickness))
+        .transpose()?;
     Ok(Judged {
         scene,
         outcome,
@@ -195,6 +204,7 @@ pub fn judge(scene: &Scene, exact: Option<&BemSettings>) -> Result<Judged, Error
         warnings,
         exact,
         levers,
+        robust,
     })
 }
 

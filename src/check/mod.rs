@@ -19,7 +19,8 @@
 //! shared with the exact check ([`crate::verify`]) are in [`criteria`]; the minimum-thickness
 //! search and the argument for it in [`min_thickness`], its root finder in [`itp`]; what alone
 //! would make a failing design pass in [`levers`]; the same checks at every interface of a
-//! layer stack in [`stack`].
+//! layer stack in [`stack`]; the design at the worst corner of its materials' ranges in
+//! [`robust`].
 //!
 //! ## Validity
 //! The outcome carries a warning, with the number that triggered it, where the theory is
@@ -36,6 +37,7 @@ pub mod criteria;
 pub mod itp;
 pub mod levers;
 pub mod min_thickness;
+pub mod robust;
 pub mod stack;
 #[cfg(test)]
 mod tests;

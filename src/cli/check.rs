@@ -106,6 +106,14 @@ fn run_sweep(
             ),
         });
     }
+    if scene.robust {
+        return Err(Error::Value {
+            origin: "--sweep-thickness".into(),
+            msg: "--robust (criteria.robust) judges the design at its thickness; run it without \
+                  the sweep"
+                .into(),
+        });
+    }
     let (checker, read_warnings) = pipeline::checker(scene)?;
     for w in &read_warnings {
         eprintln!("coatcheck: warning: {w}");

@@ -97,13 +97,24 @@ fn long(key: Key) -> &'static str {
 
 fn arg(key: Key) -> Arg {
     let spec = key.spec();
-    Arg::new(long(key))
-        .long(long(key))
+    let arg = Arg::new(long(key));
+    // A switch's flag alone means yes; `=` keeps the next argument (a scene file) its own.
+    let arg = match spec.value {
+        Value::Switch => arg
+            .num_args(0..=1)
+            .require_equals(true)
+            .default_missing_value("true"),
+        _ => arg,
+    };
+    arg.long(long(key))
         .value_name(long(key).to_uppercase().replace('-', "_"))
         .help(spec.help)
         .action(ArgAction::Set)
         .value_parser(ValueParser::string())
-        .allow_hyphen_values(matches!(spec.value, Value::Files | Value::Quantity(..)))
+        .allow_hyphen_values(matches!(
+            spec.value,
+            Value::Files | Value::Quantity(..) | Value::Span(_)
+        ))
 }
 
 impl clap::Args for SceneFlags {

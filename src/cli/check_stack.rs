@@ -23,6 +23,7 @@ fn refuse(args: &CheckArgs, scene: &Scene) -> Result<(), Error> {
         ),
         ("load.friction (sliding)", scene.friction > 0.0),
         ("criteria.shear_tail", scene.criteria.shear_tail.is_some()),
+        ("--robust (criteria.robust)", scene.robust),
     ];
     match given.iter().find(|(_, on)| *on) {
         Some((what, _)) => Err(Error::Value {

@@ -89,6 +89,18 @@ pub struct Record {
     pub verify_mean_contact_pressure_pa: Option<f64>,
     pub verify_tau_peak_pa: Option<f64>,
     pub verify_sigma_peak_interface_pa: Option<f64>,
+    /// The robust verdict, its governing check and margin, and the d_min range over the
+    /// corners of the materials' ranges (`check --robust`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust_verdict: Option<&'static str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust_governing_check: Option<&'static str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust_margin: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust_min_thickness_m_min: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust_min_thickness_m_max: Option<f64>,
     pub warnings: Vec<String>,
     /// Why the scene could not be evaluated.
     pub error: Option<String>,
@@ -179,6 +191,17 @@ impl Record {
             r.verify_mean_contact_pressure_pa = Some(v.mean_contact_pressure.value);
             r.verify_tau_peak_pa = Some(v.tau_peak.value.value);
             r.verify_sigma_peak_interface_pa = Some(v.sigma_peak_interface.value.value);
+        }
+        if let Some(x) = &j.robust {
+            r.robust_verdict = Some(if x.pass { "pass" } else { "fail" });
+            r.robust_governing_check = x.governing.map(CheckKind::name);
+            r.robust_margin = x
+                .checks
+                .iter()
+                .find(|c| Some(c.result.kind) == x.governing)
+                .and_then(|c| c.result.margin);
+            r.robust_min_thickness_m_min = x.min_thickness.and_then(|m| m.min);
+            r.robust_min_thickness_m_max = x.min_thickness.and_then(|m| m.max);
         }
         r
     }
@@ -360,6 +383,19 @@ const TAIL: &[Column] = &[
     ("verify_tau_peak_pa", |r| Cell::Number(r.verify_tau_peak_pa)),
     ("verify_sigma_peak_interface_pa", |r| {
         Cell::Number(r.verify_sigma_peak_interface_pa)
+    }),
+    ("robust_verdict", |r| {
+        Cell::Text(r.robust_verdict.map(Into::into))
+    }),
+    ("robust_governing_check", |r| {
+        Cell::Text(r.robust_governing_check.map(Into::into))
+    }),
+    ("robust_margin", |r| Cell::Number(r.robust_margin)),
+    ("robust_min_thickness_m_min", |r| {
+        Cell::Number(r.robust_min_thickness_m_min)
+    }),
+    ("robust_min_thickness_m_max", |r| {
+        Cell::Number(r.robust_min_thickness_m_max)
     }),
     ("worst_file", |r| Cell::Text(r.worst_file.clone())),
     ("files", |r| Cell::Count(r.files as u64)),

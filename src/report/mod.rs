@@ -14,6 +14,7 @@ pub mod junit;
 pub mod materials;
 pub mod parquet;
 pub mod plot;
+pub mod robust;
 pub mod stack;
 pub mod sweep;
 pub mod verify;
