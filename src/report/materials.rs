@@ -61,8 +61,8 @@ pub fn table(lib: &Library) -> Result<String, Error> {
         }
     }
     Ok(format!(
-        "{t}\n\nRanges (check --robust judges a design at their worst corner; entries without \
-         one have the nominal value only):\n{r}\n"
+        "{t}\n\nRanges (check --robust judges a design at their worst corner; the others have \
+         nominal values only):\n{r}\n"
     ))
 }
 
