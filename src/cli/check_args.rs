@@ -173,13 +173,23 @@ mod tests {
         let help = Check::command().render_help().to_string();
         for spec in KEYS {
             let value = spec.flag[2..].to_uppercase().replace('-', "_");
-            assert!(
-                help.contains(&format!("{} <{value}>", spec.flag)),
-                "{}",
-                spec.flag
-            );
+            let switch = spec.value == Value::Switch;
+            let shown = if switch {
+                format!("{}[=<{value}>]", spec.flag)
+            } else {
+                format!("{} <{value}>", spec.flag)
+            };
+            assert!(help.contains(&shown), "{}", spec.flag);
             assert!(help.contains(spec.help), "{}", spec.help);
-            let args = parse(&[spec.flag, "x"]);
+            let args = if switch {
+                // Alone it means yes, and the next argument stays the scene.
+                let alone = parse(&[spec.flag, "scene.toml"]);
+                assert_eq!(alone.overrides(), vec![(spec.name, "true".to_string())]);
+                assert_eq!(alone.scene, Some(PathBuf::from("scene.toml")));
+                parse(&[&format!("{}=x", spec.flag)])
+            } else {
+                parse(&[spec.flag, "x"])
+            };
             assert_eq!(args.overrides(), vec![(spec.name, "x".to_string())]);
         }
     }
