@@ -7,6 +7,12 @@
 //! `source` note. The bundled files are compiled into the binary ([`BUILTIN`]); a directory given
 //! with `--materials DIR` adds entries or overrides bundled ones of the same name.
 //!
+//! A file may give each property's range of values, `youngs_modulus_range = ["4 MPa", "8 MPa"]`,
+//! `poisson_ratio_range = [0.4987, 0.4998]`, `yield_strength_range`, `shear_strength_range`
+//! (each a [`Span`] that holds the nominal value), with `range_source` saying where the ranges
+//! come from (required with any range). `check --robust` judges the design at the worst corner
+//! of these ranges ([`crate::check::robust`]).
+//!
 //! `kind` says what the material is usually used as; any elastic material may be used as film or
 //! substrate (the layered solution, eq. (7), holds for either stiffness order), but the
 //! substrate-yield check needs a yield strength.
@@ -119,6 +125,9 @@ pub struct Material {
     /// Yield strength in Pa (substrates; `None` when not given).
     pub yield_strength: Option<f64>,
     pub source: String,
+    /// The ranges of E, ν and the yield strength (`strength`), where known.
+    #[serde(skip_serializing_if = "Ranges::is_empty")]
+    pub ranges: Ranges,
 }
 
 /// A bond (adhesive or vulcanised joint) between film and substrate.
@@ -128,6 +137,89 @@ pub struct Bond {
     /// Shear strength in Pa.
     pub shear_strength: f64,
     pub source: String,
+    /// The range of the shear strength (`strength`), where known.
+    #[serde(skip_serializing_if = "Ranges::is_empty")]
+    pub ranges: Ranges,
+}
+
+/// The values a property may take, `[min, max]` (SI), holding its nominal value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Span {
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Span {
+    /// The range of a property given as one value.
+    pub fn point(v: f64) -> Self {
+        Span { min: v, max: v }
+    }
+
+    /// max > min.
+    pub fn is_wide(&self) -> bool {
+        self.max > self.min
+    }
+}
+
+/// The ranges of a material's or a bond's properties (`None`: only the nominal value is known),
+/// and where they come from.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Ranges {
+    pub youngs_modulus: Option<Span>,
+    pub poisson_ratio: Option<Span>,
+    /// The yield strength of a material, the shear strength of a bond.
+    pub strength: Option<Span>,
+    /// Where the ranges come from (`range_source`, or the scene for a scene's ranges).
+    pub source: Option<String>,
+}
+
+impl Ranges {
+    /// No range and no source.
+    pub fn is_empty(&self) -> bool {
+        self.youngs_modulus.is_none()
+            && self.poisson_ratio.is_none()
+            && self.strength.is_none()
+            && self.source.is_none()
+    }
+}
+
+/// What a range is of, for its checks: a modulus or strength (> 0), or a Poisson ratio (the
+/// values [`Elastic::new`] accepts).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SpanOf {
+    Positive,
+    Poisson,
+}
+
+/// Read `f` as the range of property `key` whose nominal value is `nominal`: two values,
+/// min ≤ max, each valid for the property, holding the nominal value. Errors name `key` at
+/// `f`'s line (or flag).
+pub fn read_span(
+    ctx: &Ctx<'_>,
+    f: &Field,
+    key: &str,
+    dim: Dim,
+    of: SpanOf,
+    nominal: f64,
+) -> Result<Span, Error> {
+    let (min, max) = ctx.pair(f, key, dim)?;
+    for v in [min, max] {
+        let bad = match of {
+            SpanOf::Positive => (v <= 0.0).then(|| format!("{v:e} (expected values > 0)")),
+            SpanOf::Poisson => Elastic::new(1.0, v).err().map(|e| e.to_string()),
+        };
+        if let Some(why) = bad {
+            return Err(ctx.error(&f.origin, key, why));
+        }
+    }
+    if !(min..=max).contains(&nominal) {
+        return Err(ctx.error(
+            &f.origin,
+            key,
+            format!("[{min:e}, {max:e}] does not hold the nominal value {nominal:e}"),
+        ));
+    }
+    Ok(Span { min, max })
 }
 
 /// One parsed library file.
@@ -156,6 +248,11 @@ struct RawEntry {
     poisson_ratio: Option<Field>,
     yield_strength: Option<Field>,
     shear_strength: Option<Field>,
+    youngs_modulus_range: Option<Field>,
+    poisson_ratio_range: Option<Field>,
+    yield_strength_range: Option<Field>,
+    shear_strength_range: Option<Field>,
+    range_source: Option<Field>,
     source: Field,
 }
 
@@ -212,6 +309,9 @@ pub fn parse_entry(text: &str, path: &Path) -> Result<Entry, Error> {
             (&raw.youngs_modulus, "youngs_modulus"),
             (&raw.poisson_ratio, "poisson_ratio"),
             (&raw.yield_strength, "yield_strength"),
+            (&raw.youngs_modulus_range, "youngs_modulus_range"),
+            (&raw.poisson_ratio_range, "poisson_ratio_range"),
+            (&raw.yield_strength_range, "yield_strength_range"),
         ] {
             forbid(
                 f,
@@ -221,17 +321,39 @@ pub fn parse_entry(text: &str, path: &Path) -> Result<Entry, Error> {
         }
         let f = require(&raw.shear_strength, "shear_strength")?;
         let shear_strength = ctx.positive(&f, "shear_strength", Dim::Pressure)?;
+        let strength = raw
+            .shear_strength_range
+            .as_ref()
+            .map(|f| {
+                let key = "shear_strength_range";
+                read_span(
+                    &ctx,
+                    f,
+                    key,
+                    Dim::Pressure,
+                    SpanOf::Positive,
+                    shear_strength,
+                )
+            })
+            .transpose()?;
+        let ranges = Ranges {
+            strength,
+            source: range_source(&ctx, &raw, strength.is_some())?,
+            ..Ranges::default()
+        };
         return Ok(Entry::Bond(Bond {
             name,
             shear_strength,
             source,
+            ranges,
         }));
     }
-    forbid(
-        &raw.shear_strength,
-        "shear_strength",
-        "a bond property (expected kind = \"bond\")",
-    )?;
+    for (f, key) in [
+        (&raw.shear_strength, "shear_strength"),
+        (&raw.shear_strength_range, "shear_strength_range"),
+    ] {
+        forbid(f, key, "a bond property (expected kind = \"bond\")")?;
+    }
     let fe = require(&raw.youngs_modulus, "youngs_modulus")?;
     let fn_ = require(&raw.poisson_ratio, "poisson_ratio")?;
     let e = ctx.positive(&fe, "youngs_modulus", Dim::Pressure)?;
@@ -242,13 +364,85 @@ pub fn parse_entry(text: &str, path: &Path) -> Result<Entry, Error> {
         Some(f) => Some(ctx.positive(f, "yield_strength", Dim::Pressure)?),
         None => None,
     };
+    let span = |f: &Option<Field>, key: &str, dim, of, nominal: Option<f64>| {
+        let Some(f) = f else { return Ok(None) };
+        let nominal = nominal.ok_or_else(|| {
+            ctx.error(
+                &f.origin,
+                key,
+                "a range without its nominal value (give yield_strength too)",
+            )
+        })?;
+        read_span(&ctx, f, key, dim, of, nominal).map(Some)
+    };
+    let (e_key, nu_key, y_key) = (
+        "youngs_modulus_range",
+        "poisson_ratio_range",
+        "yield_strength_range",
+    );
+    let youngs_modulus = span(
+        &raw.youngs_modulus_range,
+        e_key,
+        Dim::Pressure,
+        SpanOf::Positive,
+        Some(e),
+    )?;
+    let poisson_ratio = span(
+        &raw.poisson_ratio_range,
+        nu_key,
+        Dim::Dimensionless,
+        SpanOf::Poisson,
+        Some(nu),
+    )?;
+    let strength = span(
+        &raw.yield_strength_range,
+        y_key,
+        Dim::Pressure,
+        SpanOf::Positive,
+        yield_strength,
+    )?;
+    let any = youngs_modulus.is_some() || poisson_ratio.is_some() || strength.is_some();
+    let ranges = Ranges {
+        youngs_modulus,
+        poisson_ratio,
+        strength,
+        source: range_source(&ctx, &raw, any)?,
+    };
     Ok(Entry::Material(Material {
         name,
         kind,
         elastic,
         yield_strength,
         source,
+        ranges,
     }))
+}
+
+/// The file's `range_source`: required with any range, and only with one.
+fn range_source(ctx: &Ctx<'_>, raw: &RawEntry, any_range: bool) -> Result<Option<String>, Error> {
+    match (&raw.range_source, any_range) {
+        (Some(f), true) => {
+            let text = ctx.text(f, "range_source")?.trim();
+            if text.is_empty() {
+                return Err(ctx.error(
+                    &f.origin,
+                    "range_source",
+                    "empty (expected where the ranges come from)",
+                ));
+            }
+            Ok(Some(text.to_string()))
+        }
+        (Some(f), false) => Err(ctx.error(
+            &f.origin,
+            "range_source",
+            "no range is given (expected with youngs_modulus_range, poisson_ratio_range or a strength range)",
+        )),
+        (None, true) => Err(ctx.missing(
+            "range_source",
+            "give the source of the ranges (datasheet, handbook or paper, and how the range was set)",
+        )),
+        (None, false) => Ok(None),
+    }
 }
 
 /// The materials and bonds known to a run, by name.
@@ -593,6 +787,142 @@ mod tests {
             assert!(e.starts_with(&format!("m.toml:{line}:")), "{e}");
             assert!(e.contains(needle), "{e}");
             assert!(!e.contains('\n'), "{e}");
+        }
+    }
+
+    #[test]
+    fn ranges_are_read_and_bad_ones_are_rejected_at_their_line() {
+        let p = Path::new("m.toml");
+        let ok = "schema_version = 1\nname = \"x\"\nkind = \"substrate\"\nyoungs_modulus = \"200 GPa\"\npoisson_ratio = 0.29\nyield_strength = \"250 MPa\"\nyoungs_modulus_range = [\"190 GPa\", \"210 GPa\"]\npoisson_ratio_range = [0.28, 0.3]\nyield_strength_range = [\"235 MPa\", 2.6e8]\nrange_source = \"s\"\nsource = \"s\"\n";
+        let Entry::Material(m) = parse_entry(ok, p).unwrap() else {
+            panic!("a material")
+        };
+        assert_eq!(
+            m.ranges.youngs_modulus,
+            Some(Span {
+                min: 1.9e11,
+                max: 2.1e11
+            })
+        );
+        assert_eq!(
+            m.ranges.poisson_ratio,
+            Some(Span {
+                min: 0.28,
+                max: 0.3
+            })
+        );
+        assert_eq!(
+            m.ranges.strength,
+            Some(Span {
+                min: 2.35e8,
+                max: 2.6e8
+            })
+        );
+        assert_eq!(m.ranges.source.as_deref(), Some("s"));
+        let e_line = "youngs_modulus_range = [\"190 GPa\", \"210 GPa\"]";
+        let nu_line = "poisson_ratio_range = [0.28, 0.3]";
+        let cases = [
+            (
+                e_line,
+                "youngs_modulus_range = [\"210 GPa\", \"190 GPa\"]",
+                7,
+                "youngs_modulus_range: min 2.1e11 > max 1.9e11",
+            ),
+            (
+                e_line,
+                "youngs_modulus_range = [\"-1 GPa\", \"210 GPa\"]",
+                7,
+                "youngs_modulus_range: -1e9 (expected values > 0)",
+            ),
+            (
+                e_line,
+                "youngs_modulus_range = [\"201 GPa\", \"210 GPa\"]",
+                7,
+                "does not hold the nominal value",
+            ),
+            (
+                e_line,
+                "youngs_modulus_range = [\"190 GPa\"]",
+                7,
+                "expected a range [min, max]",
+            ),
+            (
+                e_line,
+                "youngs_modulus_range = [\"190 GPa\", \"2 furlong\"]",
+                7,
+                "'2 furlong' is not",
+            ),
+            (
+                nu_line,
+                "poisson_ratio_range = [0.28, 0.6]",
+                8,
+                "poisson_ratio_range: invalid Poisson ratio",
+            ),
+            (
+                nu_line,
+                "poisson_ratio_range = [-1.5, 0.3]",
+                8,
+                "poisson_ratio_range: invalid Poisson ratio",
+            ),
+            ("range_source = \"s\"\n", "", 0, "range_source is missing"),
+        ];
+        for (from, to, line, needle) in cases {
+            let text = ok.replace(from, to);
+            let e = parse_entry(&text, p).unwrap_err().to_string();
+            if line > 0 {
+                assert!(e.starts_with(&format!("m.toml:{line}:")), "{e}");
+            }
+            assert!(e.starts_with("m.toml") && e.contains(needle), "{e}");
+        }
+        // A range of a property the entry does not have, and a range source without ranges.
+        let bond = "schema_version = 1\nname = \"b\"\nkind = \"bond\"\nshear_strength = \"10 MPa\"\nsource = \"s\"\n";
+        let e = parse_entry(&format!("{bond}yield_strength_range = [1, 2]\n"), p).unwrap_err();
+        assert!(
+            e.to_string().starts_with("m.toml:6: yield_strength_range"),
+            "{e}"
+        );
+        let e = parse_entry(&format!("{bond}range_source = \"x\"\n"), p).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("m.toml:6: range_source: no range"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn the_library_has_ranges_with_sources_except_the_papers_values() {
+        let lib = Library::builtin().unwrap();
+        for e in lib.entries().unwrap() {
+            let (name, ranges, strength) = match e {
+                Entry::Material(m) => (&m.name, &m.ranges, m.yield_strength),
+                Entry::Bond(b) => (&b.name, &b.ranges, Some(b.shear_strength)),
+            };
+            if name.starts_with("paper-") || name == "epoxy" {
+                assert!(ranges.is_empty(), "{name}");
+                continue;
+            }
+            assert!(
+                ranges.source.as_ref().is_some_and(|s| s.len() > 40),
+                "{name}"
+            );
+            if let Entry::Material(m) = e {
+                let (e_span, nu_span) = (
+                    ranges.youngs_modulus.unwrap(),
+                    ranges.poisson_ratio.unwrap(),
+                );
+                assert!(e_span.is_wide() && nu_span.is_wide(), "{name}");
+                assert!(
+                    (e_span.min..=e_span.max).contains(&m.elastic.youngs),
+                    "{name}"
+                );
+            }
+            // Glass's "yield strength" is a rough compressive strength: no range.
+            if let Some(strength) = strength
+                && name != "glass"
+            {
+                let s = ranges.strength.unwrap();
+                assert!(s.is_wide() && (s.min..=s.max).contains(&strength), "{name}");
+            }
         }
     }
 

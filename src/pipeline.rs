@@ -11,6 +11,7 @@
 
 use crate::bem::{BemSettings, Surface};
 use crate::check::levers::{Lever, levers};
+use crate::check::robust::{self, Robust};
 use crate::check::stack::{StackChecker, StackOutcome};
 use crate::check::stack_levers::stack_levers;
 use crate::check::{CheckKind, CheckResult, Checker, MinThickness, Outcome};
@@ -159,6 +160,8 @@ pub struct Judged {
     pub stack_exact: Option<StackExact>,
     /// What alone would make a failing design pass (empty when it passes).
     pub levers: Vec<Lever>,
+    /// The design at the worst corner of its materials' ranges (`--robust`), on the worst file.
+    pub robust: Option<Robust>,
 }
 
 impl Judged {
@@ -171,7 +174,7 @@ impl Judged {
         }
     }
 
-    /// Persson's checks pass, and the exact ones when they were made.
+    /// Persson's checks pass, and the exact ones and the robust ones when they were made.
     pub fn pass(&self) -> bool {
         self.outcome.pass()
             && self.exact.as_ref().is_none_or(|e| e.verification.pass)
@@ -179,6 +182,7 @@ impl Judged {
                 .stack_exact
                 .as_ref()
                 .is_none_or(|e| e.verification.pass)
+            && self.robust.as_ref().is_none_or(|r| r.pass)
     }
 }
 
@@ -340,6 +344,16 @@ pub fn judge_exact(scene: &Scene, exact: Option<&ExactOptions>) -> Result<Judged
         }
         _ => Vec::new(),
     };
+    let robust = match (&outcome, scene.robust) {
+        (_, false) => None,
+        (Verdict::Film(film), true) => Some(robust::judge_scene(&scene, film.thickness)?),
+        (Verdict::Stack(_), true) => {
+            return Err(Error::Value {
+                origin: "--robust (criteria.robust)".into(),
+                msg: "not available for a layer stack ([[layer]] tables)".into(),
+            });
+        }
+    };
     Ok(Judged {
         scene,
         outcome,
@@ -349,6 +363,7 @@ pub fn judge_exact(scene: &Scene, exact: Option<&ExactOptions>) -> Result<Judged
         exact,
         stack_exact,
         levers,
+        robust,
     })
 }
 

@@ -77,9 +77,20 @@ impl<'de> Deserialize<'de> for ListItem {
         impl serde::de::Visitor<'_> for Visit {
             type Value = ListItem;
             fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-                f.write_str("a list of strings (each entry in quotes)")
+                f.write_str("a list of strings (each entry in quotes) or numbers")
             }
             fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<ListItem, E> {
+                Ok(ListItem(v.to_string()))
+            }
+            // A number in a list (a range's end, `[0.499, 0.4999]`) is kept as its shortest
+            // round-trip text, read back exactly by the unit parser.
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<ListItem, E> {
+                Ok(ListItem(format!("{v:e}")))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<ListItem, E> {
+                Ok(ListItem(v.to_string()))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<ListItem, E> {
                 Ok(ListItem(v.to_string()))
             }
         }
@@ -291,6 +302,46 @@ impl Ctx<'_> {
                 Err(self.error(&f.origin, key, "expected a list of names"))
             }
         }
+    }
+
+    /// Two physical values `[min, max]`: a TOML list of two numbers (SI) or strings with units,
+    /// or `min,max` from a flag; min ≤ max.
+    pub fn pair(&self, f: &Field, key: &str, dim: Dim) -> Result<(f64, f64), Error> {
+        let items = match &f.raw {
+            Raw::List(v) => v.clone(),
+            Raw::Text(t) => t.split(',').map(|s| s.trim().to_string()).collect(),
+            Raw::Number(_) | Raw::Bool(_) => Vec::new(),
+        };
+        let [lo, hi] = items.as_slice() else {
+            return Err(self.error(
+                &f.origin,
+                key,
+                format!(
+                    "expected a range [min, max] of two values ({dim}, e.g. [\"4 MPa\", \"8 MPa\"])"
+                ),
+            ));
+        };
+        let at = |t: &String| {
+            parse_quantity(t, dim)
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| {
+                    self.error(
+                        &f.origin,
+                        key,
+                        format!("'{t}' is not a finite value ({dim})"),
+                    )
+                })
+        };
+        let (lo, hi) = (at(lo)?, at(hi)?);
+        if lo > hi {
+            return Err(self.error(
+                &f.origin,
+                key,
+                format!("min {lo:e} > max {hi:e} (expected [min, max])"),
+            ));
+        }
+        Ok((lo, hi))
     }
 
     /// A path given in the file is relative to the file's directory; one from a flag is

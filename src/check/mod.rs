@@ -20,7 +20,8 @@
 //! search and the argument for it in [`min_thickness`], its root finder in [`itp`]; what alone
 //! would make a failing design pass in [`levers`]; the same checks at every interface of a
 //! layer stack in [`stack`], its levers in [`stack_levers`]; what the film's and the stack's
-//! checkers share in `basis`.
+//! checkers share in `basis`; the design at the worst corner of its materials' ranges in
+//! [`robust`].
 //!
 //! ## Validity
 //! The outcome carries a warning, with the number that triggered it, where the theory is
@@ -38,6 +39,7 @@ pub mod criteria;
 pub mod itp;
 pub mod levers;
 pub mod min_thickness;
+pub mod robust;
 pub mod stack;
 pub mod stack_levers;
 #[cfg(test)]

@@ -132,6 +132,14 @@ fn run_sweep(
             ),
         });
     }
+    if scene.robust {
+        return Err(Error::Value {
+            origin: "--sweep-thickness".into(),
+            msg: "--robust (criteria.robust) judges the design at its thickness; run it without \
+                  the sweep"
+                .into(),
+        });
+    }
     if scene.is_stack() {
         return super::check_stack::sweep(args, scene, &log_space(from, to, n));
     }

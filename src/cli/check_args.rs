@@ -106,13 +106,24 @@ fn long(key: Key) -> &'static str {
 
 fn arg(key: Key) -> Arg {
     let spec = key.spec();
-    Arg::new(long(key))
-        .long(long(key))
+    let arg = Arg::new(long(key));
+    // A switch's flag alone means yes; `=` keeps the next argument (a scene file) its own.
+    let arg = match spec.value {
+        Value::Switch => arg
+            .num_args(0..=1)
+            .require_equals(true)
+            .default_missing_value("true"),
+        _ => arg,
+    };
+    arg.long(long(key))
         .value_name(long(key).to_uppercase().replace('-', "_"))
         .help(spec.help)
         .action(ArgAction::Set)
         .value_parser(ValueParser::string())
-        .allow_hyphen_values(matches!(spec.value, Value::Files | Value::Quantity(..)))
+        .allow_hyphen_values(matches!(
+            spec.value,
+            Value::Files | Value::Quantity(..) | Value::Span(_)
+        ))
 }
 
 impl clap::Args for SceneFlags {
@@ -171,13 +182,23 @@ mod tests {
         let help = Check::command().render_help().to_string();
         for spec in KEYS {
             let value = spec.flag[2..].to_uppercase().replace('-', "_");
-            assert!(
-                help.contains(&format!("{} <{value}>", spec.flag)),
-                "{}",
-                spec.flag
-            );
+            let switch = spec.value == Value::Switch;
+            let shown = if switch {
+                format!("{}[=<{value}>]", spec.flag)
+            } else {
+                format!("{} <{value}>", spec.flag)
+            };
+            assert!(help.contains(&shown), "{}", spec.flag);
             assert!(help.contains(spec.help), "{}", spec.help);
-            let args = parse(&[spec.flag, "x"]);
+            let args = if switch {
+                // Alone it means yes, and the next argument stays the scene.
+                let alone = parse(&[spec.flag, "scene.toml"]);
+                assert_eq!(alone.overrides(), vec![(spec.name, "true".to_string())]);
+                assert_eq!(alone.scene, Some(PathBuf::from("scene.toml")));
+                parse(&[&format!("{}=x", spec.flag)])
+            } else {
+                parse(&[spec.flag, "x"])
+            };
             assert_eq!(args.overrides(), vec![(spec.name, "x".to_string())]);
         }
     }

@@ -98,6 +98,18 @@ pub struct Record {
     pub verify_min_thickness_m_err: Option<f64>,
     /// How many realisations of the spectrum were solved (scenes without a height map).
     pub verify_realisations: Option<usize>,
+    /// The robust verdict, its governing check and margin, and the d_min range over the
+    /// corners of the materials' ranges (`check --robust`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust_verdict: Option<&'static str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust_governing_check: Option<&'static str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust_margin: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust_min_thickness_m_min: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust_min_thickness_m_max: Option<f64>,
     pub warnings: Vec<String>,
     /// A layer stack's varied layer (`criteria.thickness_of`; `thickness_m` is its thickness)
     /// and every interface, top first (absent for a film).
@@ -207,6 +219,17 @@ impl Record {
             r.verify_verdict = Some(if v.pass { "pass" } else { "fail" });
             r.verify_area_fraction = Some(v.area_fraction.value);
             r.verify_mean_contact_pressure_pa = Some(v.mean_contact_pressure.value);
+        }
+        if let Some(x) = &j.robust {
+            r.robust_verdict = Some(if x.pass { "pass" } else { "fail" });
+            r.robust_governing_check = x.governing.map(CheckKind::name);
+            r.robust_margin = x
+                .checks
+                .iter()
+                .find(|c| Some(c.result.kind) == x.governing)
+                .and_then(|c| c.result.margin);
+            r.robust_min_thickness_m_min = x.min_thickness.and_then(|m| m.min);
+            r.robust_min_thickness_m_max = x.min_thickness.and_then(|m| m.max);
         }
         r
     }

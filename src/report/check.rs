@@ -319,14 +319,23 @@ pub(crate) fn result_rows(outcome: &Outcome) -> Vec<[String; 3]> {
 
 /// The checks as (check, value, limit, utilisation, margin, result), as the table shows them.
 pub(crate) fn check_rows(outcome: &Outcome) -> Vec<[String; 6]> {
-    let ev = &outcome.evaluation;
-    outcome
-        .checks
-        .iter()
+    let mean = outcome.evaluation.mean_contact_pressure.value;
+    check_rows_of(outcome.checks.iter(), Some(mean))
+}
+
+/// Rows of [`check_rows`] for any checks; with the mean contact pressure, substrate-yield's
+/// value says which level it is.
+pub(crate) fn check_rows_of<'a>(
+    checks: impl Iterator<Item = &'a CheckResult>,
+    mean_contact_pressure: Option<f64>,
+) -> Vec<[String; 6]> {
+    checks
         .map(|ch| {
             let (mut v, l) = check_cells(ch);
-            if ch.kind == CheckKind::SubstrateYield {
-                v += if ch.value.value == ev.mean_contact_pressure.value {
+            if ch.kind == CheckKind::SubstrateYield
+                && let Some(mean) = mean_contact_pressure
+            {
+                v += if ch.value.value == mean {
                     " (mean contact pressure)"
                 } else {
                     " (interface peak)"
@@ -429,6 +438,12 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
             if let Some(x) = &j.exact {
                 t += &format!("\n{}", verify::check_table(x, outcome));
             }
+            if let Some(r) = &j.robust {
+                t += &format!(
+                    "\n{}",
+                    super::robust::table_text(r, &scene.design(), outcome)
+                );
+            }
             t
         }
         Format::Json => {
@@ -445,6 +460,11 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
                 o.insert("verify".into(), verify::check_json(x, outcome));
                 o.insert("exact".into(), verify::exact_json(x, outcome));
                 o.insert("verdict_with_verify".into(), verdict.into());
+            }
+            if let (Some(r), Some(o)) = (&j.robust, v.as_object_mut()) {
+                let robust = super::robust::json_value(r, &scene.design(), outcome);
+                o.insert("robust".into(), robust);
+                o.insert("verdict_with_robust".into(), verdict.into());
             }
             format!("{v:#}\n")
         }

@@ -370,6 +370,13 @@ pub fn section(title: &str, j: &Judged) -> Result<Section, Error> {
         ),
         None => "no check enabled".into(),
     };
+    let headline = match &j.robust {
+        Some(r) => format!(
+            "{headline}; robust (worst corner of the materials' ranges): {}",
+            if r.pass { "PASS" } else { "FAIL" }
+        ),
+        None => headline,
+    };
     let levers = j.levers.iter().map(lever_text).collect();
     let mut inputs = super::check::scene_rows(scene);
     for (what, source) in [
@@ -409,6 +416,10 @@ pub fn section(title: &str, j: &Judged) -> Result<Section, Error> {
         "Materials: the moduli and strengths are the library's values (sources above); their          spread is not propagated."
             .into(),
     ];
+    if let Some(r) = &j.robust {
+        uncertainty.pop();
+        uncertainty.extend(super::robust::sentences(r, &scene.design(), outcome));
+    }
     if let Some(e) = &j.exact {
         for row in crate::verify::check_rows(&outcome.evaluation, &e.verification) {
             let show = |x: crate::prec::Estimate| {

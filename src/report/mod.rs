@@ -15,6 +15,7 @@ pub mod junit;
 pub mod materials;
 pub mod parquet;
 pub mod plot;
+pub mod robust;
 pub mod stack;
 pub mod stack_sweep;
 pub mod sweep;

@@ -101,6 +101,11 @@ pub enum Value {
     Names,
     /// A physical value of dimension `Dim` (a number is SI, a string may carry a unit).
     Quantity(Dim, Range),
+    /// The range `[min, max]` of a material property of dimension `Dim` (a list of two values,
+    /// or `min,max` from a flag), read by [`crate::material::read_span`].
+    Span(Dim),
+    /// Yes or no: `true`/`false` in the file; the flag alone means yes (`--flag=false`: no).
+    Switch,
 }
 
 /// Mutually exclusive alternatives: keys of two alternatives of one choice contradict each
@@ -438,6 +443,20 @@ key_table! {
         alt: Some((Choice::Film, 1)),
         help: "Film Poisson ratio (with --film-youngs-modulus)",
     },
+    FilmYoungsModulusRange => Spec {
+        name: "film.youngs_modulus_range",
+        flag: "--film-youngs-modulus-range",
+        value: Value::Span(Dim::Pressure),
+        alt: None,
+        help: "Range of the film's Young's modulus for --robust, MIN,MAX (replaces the material's)",
+    },
+    FilmPoissonRatioRange => Spec {
+        name: "film.poisson_ratio_range",
+        flag: "--film-poisson-ratio-range",
+        value: Value::Span(Dim::Dimensionless),
+        alt: None,
+        help: "Range of the film's Poisson ratio for --robust, MIN,MAX (replaces the material's)",
+    },
     Thickness => Spec {
         name: "film.thickness",
         flag: "--thickness",
@@ -473,6 +492,27 @@ key_table! {
         alt: None,
         help: "Substrate yield strength (overrides the material's)",
     },
+    SubstrateYoungsModulusRange => Spec {
+        name: "substrate.youngs_modulus_range",
+        flag: "--substrate-youngs-modulus-range",
+        value: Value::Span(Dim::Pressure),
+        alt: None,
+        help: "Range of the substrate's Young's modulus for --robust, MIN,MAX (replaces the material's)",
+    },
+    SubstratePoissonRatioRange => Spec {
+        name: "substrate.poisson_ratio_range",
+        flag: "--substrate-poisson-ratio-range",
+        value: Value::Span(Dim::Dimensionless),
+        alt: None,
+        help: "Range of the substrate's Poisson ratio for --robust, MIN,MAX (replaces the material's)",
+    },
+    YieldStrengthRange => Spec {
+        name: "substrate.yield_strength_range",
+        flag: "--yield-strength-range",
+        value: Value::Span(Dim::Pressure),
+        alt: None,
+        help: "Range of the substrate's yield strength for --robust, MIN,MAX (replaces the material's)",
+    },
     BondMaterial => Spec {
         name: "bond.material",
         flag: "--bond",
@@ -486,6 +526,13 @@ key_table! {
         value: quantity(Dim::Pressure, Range::Si(1.0, 1e12)),
         alt: Some((Choice::Bond, 1)),
         help: "Bond shear strength (instead of a bond name, or overriding the named bond's)",
+    },
+    ShearStrengthRange => Spec {
+        name: "bond.shear_strength_range",
+        flag: "--shear-strength-range",
+        value: Value::Span(Dim::Pressure),
+        alt: None,
+        help: "Range of the bond's shear strength for --robust, MIN,MAX (replaces the bond's)",
     },
     Pressure => Spec {
         name: "load.pressure",
@@ -558,6 +605,14 @@ key_table! {
         alt: None,
         help: "Peak interface shear rule: half-normal (the paper's, default without friction) or \
                vector (|tau| of the shear vector; default and the only rule with friction)",
+    },
+    Robust => Spec {
+        name: "criteria.robust",
+        flag: "--robust",
+        value: Value::Switch,
+        alt: None,
+        help: "Also judge the design at the worst corner of its materials' ranges of E, nu and \
+               strengths (robust verdict, governing corner, d_min range)",
     },
     Rtol => Spec {
         name: "numerics.rtol",

@@ -21,7 +21,7 @@
 use super::keys::{Key, RawLayer};
 use crate::error::Error;
 use crate::layer::Elastic;
-use crate::material::{Bond, Kind, Library, Material};
+use crate::material::{Bond, Kind, Library, Material, Ranges};
 use crate::tomlin::{Ctx, Field, Raw};
 use crate::units::{Dim, parse_quantity};
 use serde::Serialize;
@@ -113,6 +113,7 @@ fn resolve_layer(
                 elastic,
                 yield_strength: None,
                 source: "given in the scene".into(),
+                ranges: Ranges::default(),
             }
         }
         (None, Some(f), None) | (None, None, Some(f)) => {
@@ -188,6 +189,7 @@ fn bond(k: usize, f: &Field, ctx: Ctx<'_>, library: &Library) -> Result<Bond, Er
                 name: "custom".into(),
                 shear_strength: s,
                 source: "given in the scene".into(),
+                ranges: Ranges::default(),
             }),
         };
     }

@@ -101,6 +101,9 @@ pub struct Scene {
     pub settings: Settings,
     /// The properties of named materials and bond the scene replaces.
     pub overrides: Vec<Override>,
+    /// Also judge the design at the worst corner of its materials' ranges (`criteria.robust`,
+    /// `--robust`; [`crate::check::robust`]).
+    pub robust: bool,
 }
 
 /// One property of a named library material or bond replaced by the scene's value.

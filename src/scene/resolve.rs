@@ -2,14 +2,14 @@
 //! table entry says, contradictions between alternatives, materials and bond looked up in the
 //! library, criteria and numerics. Errors name the key and its line (or flag).
 
-use super::keys::{Choice, Key, RawScene};
+use super::keys::{Choice, Key, RawScene, Value};
 use super::layers::{resolve_layers, thickness_of};
 use super::roughness::resolve_roughness;
 use super::{Override, Scene};
 use crate::check::{CheckKind, Checks, Criteria, ShearTail};
 use crate::error::Error;
 use crate::layer::Elastic;
-use crate::material::{Bond, Kind, Library, Material};
+use crate::material::{Bond, Kind, Library, Material, Ranges, Span, SpanOf, read_span};
 use crate::prec::Settings;
 use crate::tomlin::{Ctx, Field};
 use crate::units::Dim;
@@ -125,6 +125,10 @@ pub fn resolve(
     if let Some(rtol) = r.quantity(Key::Rtol)? {
         settings.rtol = rtol;
     }
+    let robust = match r.field(Key::Robust) {
+        Some(f) => ctx.boolean(f, Key::Robust.name())?,
+        None => false,
+    };
     Ok(Scene {
         file: file.map(Path::to_path_buf),
         coatcheck_version,
@@ -140,6 +144,7 @@ pub fn resolve(
         criteria,
         settings,
         overrides,
+        robust,
     })
 }
 
@@ -248,6 +253,8 @@ struct Role {
     youngs: Key,
     poisson: Key,
     yield_strength: Option<Key>,
+    /// The range keys of E, ν and the yield strength.
+    ranges: [Option<Key>; 3],
 }
 
 impl Role {
@@ -258,6 +265,11 @@ impl Role {
         youngs: Key::FilmYoungsModulus,
         poisson: Key::FilmPoissonRatio,
         yield_strength: None,
+        ranges: [
+            Some(Key::FilmYoungsModulusRange),
+            Some(Key::FilmPoissonRatioRange),
+            None,
+        ],
     };
     const SUBSTRATE: Role = Role {
         name: "substrate",
@@ -266,6 +278,11 @@ impl Role {
         youngs: Key::SubstrateYoungsModulus,
         poisson: Key::SubstratePoissonRatio,
         yield_strength: Some(Key::YieldStrength),
+        ranges: [
+            Some(Key::SubstrateYoungsModulusRange),
+            Some(Key::SubstratePoissonRatioRange),
+            Some(Key::YieldStrengthRange),
+        ],
     };
 }
 
@@ -306,6 +323,13 @@ fn resolve_material(
             if let Some(g) = fe.or(fnu) {
                 m.elastic = Elastic::new(e, nu).map_err(|err| r.error(role.poisson, g, err))?;
             }
+            // An explicit value has no range unless the scene gives one.
+            if fe.is_some() {
+                m.ranges.youngs_modulus = None;
+            }
+            if fnu.is_some() {
+                m.ranges.poisson_ratio = None;
+            }
             m
         }
         (None, Some(fe), Some(fnu)) => {
@@ -318,6 +342,7 @@ fn resolve_material(
                 elastic,
                 yield_strength: None,
                 source: "given in the scene".into(),
+                ranges: Ranges::default(),
             }
         }
         (None, Some(f), None) | (None, None, Some(f)) => {
@@ -344,8 +369,49 @@ fn resolve_material(
             overrides.push(override_of(key, &m.name, y, m.yield_strength));
         }
         m.yield_strength = Some(y);
+        m.ranges.strength = None;
     }
+    let [e_key, nu_key, y_key] = role.ranges;
+    let nominals = [
+        (e_key, Some(m.elastic.youngs)),
+        (nu_key, Some(m.elastic.poisson)),
+        (y_key, m.yield_strength),
+    ];
+    let mut spans = [
+        m.ranges.youngs_modulus,
+        m.ranges.poisson_ratio,
+        m.ranges.strength,
+    ];
+    for (slot, (key, nominal)) in spans.iter_mut().zip(nominals) {
+        if let Some(key) = key
+            && let Some(span) = scene_span(r, key, nominal)?
+        {
+            *slot = Some(span);
+        }
+    }
+    [
+        m.ranges.youngs_modulus,
+        m.ranges.poisson_ratio,
+        m.ranges.strength,
+    ] = spans;
     Ok(m)
+}
+
+/// The scene's range of a property (key `key`, a [`Value::Span`]) around its nominal value
+/// (`None`: the property has no value, e.g. no yield strength).
+fn scene_span(r: Reader<'_>, key: Key, nominal: Option<f64>) -> Result<Option<Span>, Error> {
+    let Some(f) = r.field(key) else {
+        return Ok(None);
+    };
+    let Value::Span(dim) = key.spec().value else {
+        unreachable!("{} is not a range", key.name());
+    };
+    let nominal = nominal.ok_or_else(|| r.error(key, f, "a range of a property with no value"))?;
+    let of = match dim {
+        Dim::Dimensionless => SpanOf::Poisson,
+        _ => SpanOf::Positive,
+    };
+    read_span(&r.ctx, f, key.name(), dim, of, nominal).map(Some)
 }
 
 fn override_of(key: Key, material: &str, value: f64, library_value: Option<f64>) -> Override {
@@ -369,6 +435,19 @@ fn resolve_bond(
     library: &Library,
     overrides: &mut Vec<Override>,
 ) -> Result<Bond, Error> {
+    let mut bond = named_or_custom_bond(r, library, overrides)?;
+    if let Some(span) = scene_span(r, Key::ShearStrengthRange, Some(bond.shear_strength))? {
+        bond.ranges.strength = Some(span);
+    }
+    Ok(bond)
+}
+
+/// The bond by name (its shear strength possibly overridden) or its shear strength.
+fn named_or_custom_bond(
+    r: Reader<'_>,
+    library: &Library,
+    overrides: &mut Vec<Override>,
+) -> Result<Bond, Error> {
     match (r.field(Key::BondMaterial), r.field(Key::ShearStrength)) {
         (Some(f), given) => {
             let name = r.ctx.text(f, Key::BondMaterial.name())?;
@@ -385,6 +464,7 @@ fn resolve_bond(
                     Some(bond.shear_strength),
                 ));
                 bond.shear_strength = s;
+                bond.ranges.strength = None;
             }
             Ok(bond)
         }
@@ -392,6 +472,7 @@ fn resolve_bond(
             name: "custom".into(),
             shear_strength: r.quantity_of(Key::ShearStrength, f)?,
             source: "given in the scene".into(),
+            ranges: Ranges::default(),
         }),
         (None, None) => Err(r.ctx.missing(
             &format!(

@@ -279,7 +279,7 @@ fn a_value_of_the_wrong_type_names_its_key_and_what_was_expected() {
         (
             "checks = [",
             "checks = [1, ",
-            "criteria.checks: invalid type: integer `1`, expected a list of strings",
+            "criteria.checks: unknown check '1' (expected bond-shear",
         ),
     ];
     for (i, (from, to, want)) in cases.into_iter().enumerate() {

@@ -33,6 +33,7 @@ mod psd_convert;
 mod psd_moments;
 mod psd_read;
 mod report_browser;
+mod robust;
 mod schema;
 mod sliding;
 mod stack;
