@@ -1,5 +1,5 @@
 //! Benchmark of the boundary-element contact solver (`coatcheck::bem`):
-//! `cargo run --release --example bench_bem [-- --quick]`.
+//! `cargo run --release --example bench_bem [-- --quick] [-- --sizes 2048,4096]`.
 //!
 //! 1. Solve times (median of runs) of a converged solve on self-affine surfaces at A/A0 ≈ 0.05,
 //!    512² and 1024² (issue 6 targets: ≤ 1 s and ≤ 5 s on 2 cores), for a homogeneous rubber
@@ -86,8 +86,19 @@ fn main() {
         "fields (s)",
         "status"
     );
-    let sizes: &[usize] = if quick { &[256, 512] } else { &[512, 1024] };
-    for &n in sizes {
+    let args: Vec<String> = std::env::args().collect();
+    let sizes: Vec<usize> = match args.iter().position(|a| a == "--sizes") {
+        Some(i) => args
+            .get(i + 1)
+            .expect("--sizes needs a list, e.g. 2048,4096")
+            .split(',')
+            .map(|v| v.parse().expect("sizes are integers"))
+            .collect(),
+        None if quick => vec![256, 512],
+        None => vec![512, 1024, 2048],
+    };
+    let only_sizes = args.iter().any(|a| a == "--sizes");
+    for &n in &sizes {
         let s = surface(n, n as f64 / 8.0, 1);
         let q_l = s.q_low();
         for (name, layers, d, p_over) in [
@@ -106,7 +117,7 @@ fn main() {
         ] {
             let stack = Stack::new(layers, d).expect("valid");
             let p0 = p_over * e0 * XI;
-            let runs = if n >= 1024 { 3 } else { 5 };
+            let runs = if n >= 2048 { 3 } else { 5 };
             let (mut ts, mut tc, mut tf) = (Vec::new(), Vec::new(), Vec::new());
             let mut last = None;
             for _ in 0..runs {
@@ -139,6 +150,9 @@ fn main() {
         }
     }
 
+    if only_sizes {
+        return;
+    }
     let fine = if quick { 512 } else { 1024 };
     println!(
         "\n# grid convergence: one surface (q1 = 32 q_L, H = 0.8, xi = {XI}) on refined grids, \

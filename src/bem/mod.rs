@@ -64,6 +64,11 @@ pub const QUANTILES: [f64; 4] = [0.5, 0.9, 0.99, 0.999];
 /// Incremental displacement updates between two FFT recomputations, at most.
 const REFRESH_EVERY: usize = 32;
 
+/// Points clamped or re-admitted in one step up to which the displacement is updated by adding
+/// their columns of the real-space influence matrix instead of a new FFT convolution (each
+/// column costs one pass over the grid; a convolution costs about as much as a few dozen).
+const SPARSE_MAX: usize = 16;
+
 /// A periodic height map: `heights[iy * nx + ix]` (m), pixel sizes `dx`, `dy` (m).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Surface {
@@ -491,6 +496,13 @@ where
             }
         })
     };
+    // The periodic real-space influence matrix's first column: the response to a unit pressure
+    // at pixel 0 (its mean is zero, as the kernel's q = 0 entry).
+    let mut green = vec![0.0; n];
+    let mut unit = vec![0.0; n];
+    unit[0] = 1.0;
+    convolve(&mut plan, &unit, &mut green);
+    drop(unit);
     let mean_h = surface.mean();
     let h: Vec<f64> = surface.heights.iter().map(|v| v - mean_h).collect();
     let h_rms = surface.h_rms();
@@ -508,9 +520,10 @@ where
     let mut g_old = 1.0;
     let mut restarts = 0usize;
     let mut iterations = 0;
-    // u is recomputed by FFT unless the last update was linear (no point clamped or
-    // re-admitted), when u ← s(u − step·r) is exact; drift is bounded by a periodic refresh,
-    // and every verdict (converged or not) is taken on a freshly computed u.
+    // u is recomputed by FFT unless the last update changed few points beyond the linear one:
+    // then u ← s(u − step·r + Σ δ_j G_j) is exact (δ_j: the change at a clamped or re-admitted
+    // point j beyond p − step·t, G_j: column j of the influence matrix); drift is bounded by a
+    // periodic refresh, and every verdict (converged or not) is taken on a freshly computed u.
     let mut need_fresh = true;
     let mut since_fresh = 0usize;
     let (mut gap_rms, mut penetration);
@@ -564,27 +577,23 @@ where
             });
         }
         let step = num / den;
-        let (total, clamped, readmitted) = project(&mut p, &t, &g, step);
+        let (total, changes) = project(&mut p, &t, &g, step);
         let scale = p0 * n as f64 / total;
-        let linear = clamped == 0.0 && readmitted == 0.0 && since_fresh < REFRESH_EVERY;
-        if linear {
-            chunked(&mut p, |_, pc| {
-                pc.iter_mut().for_each(|pi| *pi *= scale);
-                [0.0; 0]
-            });
-            chunked(&mut u, |o, uc| {
-                for (ui, ri) in uc.iter_mut().zip(&r[o..]) {
-                    *ui = scale * (*ui - step * ri);
-                }
-                [0.0; 0]
-            });
-            since_fresh += 1;
-        } else {
-            chunked(&mut p, |_, pc| {
-                pc.iter_mut().for_each(|pi| *pi *= scale);
-                [0.0; 0]
-            });
-            need_fresh = true;
+        chunked(&mut p, |_, pc| {
+            pc.iter_mut().for_each(|pi| *pi *= scale);
+            [0.0; 0]
+        });
+        match changes {
+            Some(changes) if since_fresh < REFRESH_EVERY => {
+                let field = Field {
+                    nx,
+                    ny,
+                    green: &green,
+                };
+                field.update(&mut u, &r, step, scale, &changes);
+                since_fresh += 1;
+            }
+            _ => need_fresh = true,
         }
     }
     let status = if gap_rms <= tol && penetration <= tol {
@@ -660,30 +669,85 @@ fn direction(t: &mut [f64], g: &[f64], p: &[f64], beta: f64) -> (f64, f64) {
     (sum(&parts, 0), sum(&parts, 1))
 }
 
+/// Changed points (index, change) of one projection step.
+type Changes = Vec<(usize, f64)>;
+
 /// p ← p − step·t on the contact set, projected to p ≥ 0, with penetrating points (g < 0)
-/// re-admitted at −step·g; returns Σ p and whether any point was clamped or re-admitted.
-fn project(p: &mut [f64], t: &[f64], g: &[f64], step: f64) -> (f64, f64, f64) {
-    let parts = chunked(p, |o, pc| {
-        let (mut total, mut clamped, mut readmitted) = (0.0, 0.0, 0.0);
-        for (pi, (ti, gi)) in pc.iter_mut().zip(t[o..].iter().zip(&g[o..])) {
-            if *pi > 0.0 {
-                let v = *pi - step * ti;
-                if v <= 0.0 {
-                    clamped = 1.0;
-                    *pi = 0.0;
-                } else {
-                    *pi = v;
+/// re-admitted at −step·g; returns Σ p and, if there are at most [`SPARSE_MAX`], the points
+/// clamped or re-admitted with their change beyond the linear update p − step·t (t is 0 off
+/// the contact set), in index order.
+fn project(p: &mut [f64], t: &[f64], g: &[f64], step: f64) -> (f64, Option<Changes>) {
+    let parts: Vec<(f64, Changes, bool)> = p
+        .par_chunks_mut(PAR_CHUNK)
+        .enumerate()
+        .map(|(c, pc)| {
+            let o = c * PAR_CHUNK;
+            let (mut total, mut changes, mut many) = (0.0, Vec::new(), false);
+            for (k, (pi, (ti, gi))) in pc.iter_mut().zip(t[o..].iter().zip(&g[o..])).enumerate() {
+                let linear = *pi - step * ti;
+                let mut changed = false;
+                if *pi > 0.0 {
+                    if linear <= 0.0 {
+                        changed = true;
+                        *pi = 0.0;
+                    } else {
+                        *pi = linear;
+                    }
                 }
+                if *pi == 0.0 && *gi < 0.0 {
+                    *pi = -step * gi;
+                    changed = true;
+                }
+                if changed && !many {
+                    changes.push((o + k, *pi - linear));
+                    many = changes.len() > SPARSE_MAX;
+                }
+                total += *pi;
             }
-            if *pi == 0.0 && *gi < 0.0 {
-                *pi = -step * gi;
-                readmitted = 1.0;
-            }
-            total += *pi;
-        }
-        [total, clamped, readmitted]
-    });
-    (sum(&parts, 0), max(&parts, 1), max(&parts, 2))
+            (total, changes, many)
+        })
+        .collect();
+    let total = parts.iter().map(|part| part.0).sum();
+    let count: usize = parts.iter().map(|part| part.1.len()).sum();
+    let changes = (count <= SPARSE_MAX && !parts.iter().any(|part| part.2))
+        .then(|| parts.into_iter().flat_map(|part| part.1).collect());
+    (total, changes)
+}
+
+/// A periodic grid's influence matrix, given by its first column `green` (the response at every
+/// pixel to a unit pressure at pixel 0; column j is that field shifted to pixel j).
+struct Field<'a> {
+    nx: usize,
+    ny: usize,
+    green: &'a [f64],
+}
+
+impl Field<'_> {
+    /// u ← scale·(u − step·r + Σ_j δ_j G_j) for the point changes (j, δ_j).
+    fn update(&self, u: &mut [f64], r: &[f64], step: f64, scale: f64, changes: &[(usize, f64)]) {
+        let (nx, ny, green) = (self.nx, self.ny, self.green);
+        u.par_chunks_mut(nx)
+            .zip(r.par_chunks(nx))
+            .enumerate()
+            .for_each(|(y, (urow, rrow))| {
+                for (ui, ri) in urow.iter_mut().zip(rrow) {
+                    *ui -= step * ri;
+                }
+                for &(j, delta) in changes {
+                    let (xj, yj) = (j % nx, j / nx);
+                    let grow = &green[((y + ny - yj) % ny) * nx..][..nx];
+                    // u(x) += δ G(x − xj): x ≥ xj reads G from 0, x < xj wraps to nx − xj.
+                    let (head, tail) = urow.split_at_mut(xj);
+                    for (ui, gi) in tail.iter_mut().zip(&grow[..nx - xj]) {
+                        *ui += delta * gi;
+                    }
+                    for (ui, gi) in head.iter_mut().zip(&grow[nx - xj..]) {
+                        *ui += delta * gi;
+                    }
+                }
+                urow.iter_mut().for_each(|ui| *ui *= scale);
+            });
+    }
 }
 
 /// The solution's statistics from the converged pressure and gap.
@@ -931,6 +995,52 @@ mod tests {
         let (q1, q2) = (2.0 * PI * 3.0 / l, 2.0 * PI * 2.0 / l);
         let want = a * ((q1 * q1 + q2 * q2) / 4.0).sqrt();
         assert!((s.rms_slope() - want).abs() < 1e-13 * want);
+    }
+
+    #[test]
+    fn sparse_update_matches_the_convolution() {
+        // K(scale·(p − step·t + δ)) by FFT against the update of K p with K t and the columns
+        // of the changed points (corners and wrap-around included).
+        let (nx, ny) = (12, 10);
+        let n = nx * ny;
+        let s = Surface::new(vec![0.0; n], nx, ny, 1e-6, 2e-6).unwrap();
+        let kernel = kernel_grid(&s, &|q: f64| 2.0 / q).unwrap();
+        let mut plan = Fft2::new(nx, ny);
+        let conv = |plan: &mut Fft2, x: &[f64], out: &mut [f64]| {
+            plan.filter(x, out, |kx, col| {
+                for (c, k) in col.iter_mut().zip(&kernel[kx * ny..(kx + 1) * ny]) {
+                    *c *= *k;
+                }
+            })
+        };
+        let field = |i: usize| ((i * 7919) % 101) as f64 / 50.0;
+        let p: Vec<f64> = (0..n).map(field).collect();
+        let t: Vec<f64> = (0..n).map(|i| field(i + 13) - 1.0).collect();
+        let mut unit = vec![0.0; n];
+        unit[0] = 1.0;
+        let (mut green, mut u, mut r) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        conv(&mut plan, &unit, &mut green);
+        conv(&mut plan, &p, &mut u);
+        conv(&mut plan, &t, &mut r);
+        let (step, scale) = (0.3, 1.7);
+        let changes = [(0, 0.4), (5 * nx + 7, 2.0), (n - 1, -1.1)];
+        let green_field = Field {
+            nx,
+            ny,
+            green: &green,
+        };
+        green_field.update(&mut u, &r, step, scale, &changes);
+        let mut q: Vec<f64> = p.iter().zip(&t).map(|(a, b)| a - step * b).collect();
+        for &(j, d) in &changes {
+            q[j] += d;
+        }
+        q.iter_mut().for_each(|v| *v *= scale);
+        let mut want = vec![0.0; n];
+        conv(&mut plan, &q, &mut want);
+        let peak = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (a, b) in u.iter().zip(&want) {
+            assert!((a - b).abs() < 1e-13 * peak, "{a} vs {b}");
+        }
     }
 
     #[test]
