@@ -8,6 +8,7 @@ use super::grid::{Grid, Knots};
 use super::kernels::{Kernels, Mix};
 use super::{Contact, MAX_REFINE, Request};
 use crate::error::Error;
+use crate::layer::stack::StackCache;
 use crate::layer::tangential::TANGENTIAL_RTOL;
 use crate::layer::{Bilayer, KernelTable, Stack};
 use crate::prec::{EPS, Estimate, INTERFACE_ATOL, KERNEL_RTOL, Settings, Termination};
@@ -37,6 +38,8 @@ struct Shared {
     /// The kernel table of the last material pair evaluated (d-independent; rebuilt, wider, when
     /// a thickness needs q·d outside it).
     table: Mutex<Option<Arc<KernelTable>>>,
+    /// The kernels of the last layer stack evaluated, per node (`contact::stack`).
+    stack: Mutex<Option<StackCache>>,
 }
 
 /// How far (in ln(qd)) a rebuilt kernel table reaches beyond the range asked for, so that a
@@ -106,6 +109,11 @@ impl Engine {
         let table = Arc::new(KernelTable::new(*layers, lo.exp(), hi.exp())?);
         *cache = Some(Arc::clone(&table));
         Some(table)
+    }
+
+    /// The stack cache of this engine and its siblings (taken out while an evaluation uses it).
+    pub(super) fn stack_cache(&self) -> &Mutex<Option<StackCache>> {
+        &self.shared.stack
     }
 
     pub fn spectrum(&self) -> &Spectrum {
