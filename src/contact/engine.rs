@@ -8,6 +8,7 @@ use super::grid::{Grid, Knots};
 use super::kernels::{Kernels, Mix};
 use super::{Contact, MAX_REFINE, Request};
 use crate::error::Error;
+use crate::layer::stack::StackCache;
 use crate::layer::tangential::TANGENTIAL_RTOL;
 use crate::layer::{Bilayer, KernelTable, Stack, TangentialTable};
 use crate::prec::{EPS, Estimate, INTERFACE_ATOL, KERNEL_RTOL, Settings, Termination};
@@ -41,6 +42,8 @@ struct Shared {
     /// keyed by the pair and the range of the static table it was built for (`None` when the
     /// kernels were not resolved: not tried again).
     tangential: Mutex<Option<TangentialEntry>>,
+    /// The kernels of the last layer stack evaluated, per node (`contact::stack`).
+    stack: Mutex<Option<StackCache>>,
 }
 
 /// A cached friction-kernel table: the pair, the static table's range, the table.
@@ -133,6 +136,11 @@ impl Engine {
         let table = Arc::new(KernelTable::new(*layers, lo.exp(), hi.exp())?);
         *cache = Some(Arc::clone(&table));
         Some(table)
+    }
+
+    /// The stack cache of this engine and its siblings (taken out while an evaluation uses it).
+    pub(super) fn stack_cache(&self) -> &Mutex<Option<StackCache>> {
+        &self.shared.stack
     }
 
     pub fn spectrum(&self) -> &Spectrum {

@@ -22,10 +22,9 @@
 //! Where the kernels are scaled (thick films), the tangential kernels are scaled alike, from
 //! their undecayed forms.
 
-use crate::layer::stack::{MAX_LAYERS, Stack};
+use crate::layer::stack::StackCache;
 use crate::layer::{Bilayer, KernelTable, Nodes, Squared, TangentialTable, undecayed_squares};
 use std::cell::RefCell;
-use std::collections::HashMap;
 
 /// Above this q_L·d the interface kernels are scaled by e^{2 q_L d}: below it f², g² at q_L d
 /// exceed e^{−400}·(f e^{qd})² ≈ 1e-174·(f e^{qd})², and sums of them stay far inside the normal
@@ -73,29 +72,23 @@ enum Source<'a> {
         layers: &'a Bilayer,
         d: f64,
     },
-    /// A layer stack's S⁻² and, at its interface `k` (0 = below the top layer), f_k², g_k²,
-    /// exact at q ([`Stack::response_into`]), each q evaluated once for all interfaces
-    /// (`memo`).
+    /// The stack served by `memo`: its S⁻² and, at its interface `k` (0 = below the top
+    /// layer), f_k², g_k², exact at q ([`StackCache::response`], each q evaluated once for all
+    /// interfaces).
     Stack {
-        stack: &'a Stack,
         k: usize,
         memo: &'a StackMemo,
     },
 }
 
-/// A stack's S and every (f_k, g_k) at the q already evaluated (by q's bits): the evaluations
-/// of the interfaces of one stack share their nodes.
-pub(super) type StackMemo = RefCell<HashMap<u64, (f64, [(f64, f64); MAX_LAYERS])>>;
+/// The kernels of the stack being evaluated, per node ([`StackCache`]).
+pub(super) type StackMemo = RefCell<StackCache>;
 
-/// S and (f_k, g_k) of a stack at q.
-fn stack_at(stack: &Stack, memo: &StackMemo, k: usize, q: f64) -> (f64, f64, f64) {
+/// S and (f_k, g_k) of the stack served by `memo` at q.
+fn stack_at(memo: &StackMemo, k: usize, q: f64) -> (f64, f64, f64) {
     let mut memo = memo.borrow_mut();
-    let (s, out) = memo.entry(q.to_bits()).or_insert_with(|| {
-        let mut out = [(0.0, 0.0); MAX_LAYERS];
-        let s = stack.response_into(q, &mut out[..stack.layers().len()]);
-        (s, out)
-    });
-    (*s, out[k].0, out[k].1)
+    let (s, out) = memo.response(q);
+    (s, out[k].0, out[k].1)
 }
 
 /// The layer kernels at nodes q (with u = ln q) for one thickness: tabulated, or exact when no
@@ -182,11 +175,11 @@ impl<'a> Kernels<'a> {
         }
     }
 
-    /// The kernels of `stack` at its interface `k` (unscaled: the stack's interface integrals
-    /// stop at q·z_k = 20, `contact::stack`).
-    pub(super) fn stack(stack: &'a Stack, k: usize, memo: &'a StackMemo) -> Self {
+    /// The kernels of the stack `memo` serves at its interface `k` (unscaled: the stack's
+    /// interface integrals stop at q·z_k = 20, `contact::stack`).
+    pub(super) fn stack(k: usize, memo: &'a StackMemo) -> Self {
         Self {
-            source: Source::Stack { stack, k, memo },
+            source: Source::Stack { k, memo },
             shift: 0.0,
             mix: Mix::Static,
             tangential: None,
@@ -203,7 +196,7 @@ impl<'a> Kernels<'a> {
         match self.source {
             Source::Table { table, d, ln_d } => table.k(q * d, u + ln_d),
             Source::Exact { layers, d } => layers.s(q * d).powi(-2),
-            Source::Stack { stack, k, memo } => stack_at(stack, memo, k, q).0.powi(-2),
+            Source::Stack { memo, .. } => memo.borrow_mut().s(q).powi(-2),
         }
     }
 
@@ -212,8 +205,8 @@ impl<'a> Kernels<'a> {
         let (layers, d) = match self.source {
             Source::Table { table, d, .. } => (table.layers(), d),
             Source::Exact { layers, d } => (layers, d),
-            Source::Stack { stack, k, memo } => {
-                let (_, f, g) = stack_at(stack, memo, k, q);
+            Source::Stack { k, memo } => {
+                let (_, f, g) = stack_at(memo, k, q);
                 let e = self.shift.exp();
                 return ((f * e).powi(2), (g * e).powi(2));
             }
@@ -247,8 +240,8 @@ impl<'a> Kernels<'a> {
                 let r = layers.response(q * d);
                 (r.f * r.f, r.g * r.g)
             }
-            Source::Stack { stack, k, memo } => {
-                let (_, f, g) = stack_at(stack, memo, k, q);
+            Source::Stack { k, memo } => {
+                let (_, f, g) = stack_at(memo, k, q);
                 (f * f, g * g)
             }
         }
@@ -324,8 +317,8 @@ impl<'a> Kernels<'a> {
                     g2: r.g * r.g,
                 }
             }
-            Source::Stack { stack, k, memo } => {
-                let (s, f, g) = stack_at(stack, memo, k, q);
+            Source::Stack { k, memo } => {
+                let (s, f, g) = stack_at(memo, k, q);
                 Squared {
                     k: s.powi(-2),
                     f2: f * f,

@@ -11,15 +11,19 @@
 //! the first interface's evaluation's (each evaluation integrates the same S⁻² on the same
 //! grids). The kernels' error bound [`STACK_RTOL`] enters the rounding floor of every estimate.
 //! The stack's kernels are evaluated once per node for all interfaces (one call gives S and
-//! every f_k, g_k) and kept for the evaluation.
+//! every f_k, g_k) and kept for the evaluation, in the engine's [`StackCache`]: between the
+//! evaluations of a minimum-thickness search, where one layer changes, the recursion through
+//! the layers below it is kept per node (the nodes are the same at every thickness), to the
+//! last bit the same values.
 
 use super::engine::At;
 use super::kernels::{Kernels, StackMemo};
 use super::{Contact, Engine, Request};
 use crate::error::Error;
-use crate::layer::stack::{STACK_RTOL, Stack};
+use crate::layer::stack::{STACK_RTOL, Stack, StackCache};
 use crate::prec::Estimate;
 use serde::Serialize;
+use std::cell::RefCell;
 
 /// σ_rms and τ_rms at one interface of a stack.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -55,10 +59,32 @@ impl Engine {
                 "a finite pressure > 0 in Pa",
             ));
         }
+        // The cache of the engine's last stack, taken out for this evaluation (a new one if
+        // another evaluation holds it) and put back afterwards.
+        let taken = self
+            .stack_cache()
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .take();
+        let mut cache = taken.unwrap_or_else(|| StackCache::new(stack.clone()));
+        cache.serve(stack);
+        let memo = RefCell::new(cache);
+        let result = self.evaluate_stack_with(&memo, p0, request);
+        *self.stack_cache().lock().unwrap_or_else(|e| e.into_inner()) = Some(memo.into_inner());
+        result
+    }
+
+    /// [`Self::evaluate_stack`] with the kernels of the stack `memo` serves.
+    fn evaluate_stack_with(
+        &self,
+        memo: &StackMemo,
+        p0: f64,
+        request: Request,
+    ) -> Result<StackContact, Error> {
+        let stack = memo.borrow().stack().clone();
         let e_top = stack.layers()[0].material.e_star();
         let mut top = None;
         let mut interfaces = Vec::with_capacity(stack.layers().len());
-        let memo = StackMemo::default();
         for (k, depth) in stack.depths().into_iter().enumerate() {
             let req = Request {
                 sigma_top: request.sigma_top && k == 0,
@@ -71,7 +97,7 @@ impl Engine {
                 p0,
                 kernel_rtol: STACK_RTOL,
             };
-            let kernels = Kernels::stack(stack, k, &memo);
+            let kernels = Kernels::stack(k, memo);
             let c = self.refine(&kernels, at, req)?;
             interfaces.push(InterfaceContact {
                 depth,

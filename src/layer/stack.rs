@@ -75,6 +75,8 @@
 use super::Elastic;
 use crate::error::Error;
 use serde::Serialize;
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// Relative error bound of [`Stack::response`]'s S, f_k and g_k where their magnitude is at
 /// least 1e−30, as asserted by the test against the high-precision reference (measured worst:
@@ -295,22 +297,25 @@ impl Consts {
         2.0 * self.ku[0][0]
     }
 
-    /// exp(±xA) − I for 0 ≤ x ≤ 1 (sign +1 for P, −1 for Q).
-    fn propagator_minus_i(&self, x: f64, sign: f64) -> M4 {
+    /// exp(xA) − I and exp(−xA) − I for 0 ≤ x ≤ 1 (P − I and Q − I), from one set of series:
+    /// the odd terms change sign, each term is formed once.
+    fn propagators_minus_i(&self, x: f64) -> (M4, M4) {
         let x2 = x * x;
         let am1 = -x2 * x2 * horner(&ALPHA_M1, x2);
-        let beta = sign * (x - x2 * x2 * x * horner(&BETA_MX, x2));
+        let beta = x - x2 * x2 * x * horner(&BETA_MX, x2);
         let gamma = x2 * horner(&GAMMA, x2);
-        let delta = sign * x2 * x * horner(&DELTA, x2);
+        let delta = x2 * x * horner(&DELTA, x2);
         let [a1, a2, a3] = &self.powers;
-        let mut m = [[0.0; 4]; 4];
-        for (i, mi) in m.iter_mut().enumerate() {
-            for (j, mij) in mi.iter_mut().enumerate() {
+        let (mut p, mut q) = ([[0.0; 4]; 4], [[0.0; 4]; 4]);
+        for i in 0..4 {
+            for j in 0..4 {
                 let diag = if i == j { am1 } else { 0.0 };
-                *mij = diag + beta * a1[i][j] + gamma * a2[i][j] + delta * a3[i][j];
+                let (odd1, even, odd3) = (beta * a1[i][j], gamma * a2[i][j], delta * a3[i][j]);
+                p[i][j] = diag + odd1 + even + odd3;
+                q[i][j] = diag + -odd1 + even + -odd3;
             }
         }
-        m
+        (p, q)
     }
 }
 
@@ -410,46 +415,279 @@ impl Stack {
     /// allocating.
     pub fn response_into(&self, q: f64, out: &mut [(f64, f64)]) -> f64 {
         debug_assert!(q >= 0.0 && out.len() == self.layers.len());
-        let mut steps = [Step::Thin {
-            kb: I2,
-            x_inv: I2,
-            y: I2,
-            p: [[0.0; 4]; 4],
-        }; MAX_LAYERS];
+        let n = self.layers.len();
+        let mut steps = [EMPTY_STEP; MAX_LAYERS];
+        let k_pa = self.up(q, 0, self.substrate_stiffness(), &mut steps[..n]);
+        self.down(k_pa, &steps[..n], &[], out)
+    }
+
+    /// The substrate's stiffness t = K q·u (Pa).
+    fn substrate_stiffness(&self) -> M2 {
         let sub = &self.sub_consts;
-        let mut k_pa = scale(&sub.kd, sub.two_g);
-        for (i, (layer, c)) in self.layers.iter().zip(&self.consts).enumerate().rev() {
+        scale(&sub.kd, sub.two_g)
+    }
+
+    /// The upward recursion through the layers `from` … `from + steps.len() − 1`, starting from
+    /// the stiffness `k_pa` (Pa) below the last of them: each layer's step into `steps`, and
+    /// the stiffness (Pa) above the first.
+    fn up(&self, q: f64, from: usize, mut k_pa: M2, steps: &mut [Step]) -> M2 {
+        let range = from..from + steps.len();
+        let layers = self.layers[range.clone()].iter().zip(&self.consts[range]);
+        for (step, (layer, c)) in steps.iter_mut().zip(layers).rev() {
             let kb = scale(&k_pa, 1.0 / c.two_g);
             let x = q * layer.thickness;
-            let (kt, step) = if x <= X_THIN {
+            let (kt, s) = if x <= X_THIN {
                 thin_up(c, x, kb)
             } else {
-                thick_up(c, x, kb)
+                thick_up(c, x, &Face::new(c, kb))
             };
-            steps[i] = step;
+            *step = s;
             k_pa = scale(&kt, c.two_g);
         }
+        k_pa
+    }
+
+    /// [`Self::up`] through layers 0 … `steps.len() − 1` from the top of the base, the lowest
+    /// of them on its face `face` to the base.
+    fn up_from_face(&self, q: f64, face: &Face, steps: &mut [Step]) -> M2 {
+        let (last, above) = steps.split_last_mut().expect("a layer above the base");
+        let c = &self.consts[above.len()];
+        let x = q * self.layers[above.len()].thickness;
+        let (kt, s) = if x <= X_THIN {
+            thin_up(c, x, face.kb)
+        } else {
+            thick_up(c, x, face)
+        };
+        *last = s;
+        self.up(q, 0, scale(&kt, c.two_g), above)
+    }
+
+    /// The downward pass from the top, whose stiffness is `k_pa` (Pa), through the steps of
+    /// every layer (`upper`, not empty, then `lower`; top first): S, and (f_k, g_k) into `out`.
+    fn down(&self, k_pa: M2, upper: &[Step], lower: &[Step], out: &mut [(f64, f64)]) -> f64 {
+        let mut t = [[0.0; 2]; MAX_LAYERS];
+        let u0 = self.pass(k_pa, upper, lower, [0.0, 1.0], &mut t[..out.len()]);
+        for (o, t) in out.iter_mut().zip(&t) {
+            *o = (t[1], t[0]);
+        }
+        -u0[1] / (2.0 * (1.0 - self.layers[0].material.poisson))
+    }
+
+    /// The downward pass of the top traction t(0) = `t0` from the top, whose stiffness is
+    /// `k_pa` (Pa), through the steps of every layer (`upper`, not empty, then `lower`; top
+    /// first): the top displacement ũ(0) (in the top layer's units), and the traction (T, Σ) at
+    /// every interface into `out`.
+    fn pass(&self, k_pa: M2, upper: &[Step], lower: &[Step], t0: V2, out: &mut [V2]) -> V2 {
         let top = &self.consts[0];
-        let mut t = [0.0, 1.0];
         // The top compliance: Y X⁻¹ for a thin top layer (no inversion of the stiffness, which
         // cancels for a thin incompressible layer on a far stiffer base), K̃_1⁻¹ otherwise.
-        let u0 = match &steps[0] {
-            Step::Thin { x_inv, y, .. } => mulv(y, mulv(x_inv, t)),
-            Step::Thick { .. } => mulv(&inv(&scale(&k_pa, 1.0 / top.two_g)), t),
+        let u0 = match &upper[0] {
+            Step::Thin { x_inv, y, .. } => mulv(y, mulv(x_inv, t0)),
+            Step::Thick { .. } => mulv(&inv(&scale(&k_pa, 1.0 / top.two_g)), t0),
         };
-        let s = -u0[1] / (2.0 * (1.0 - self.layers[0].material.poisson));
+        let mut t = t0;
         // Displacement times q (dimensionless): layer k's ũ is 2G_k times this.
         let mut uq = scale_v(u0, 1.0 / top.two_g);
-        for ((step, c), o) in steps.iter().zip(&self.consts).zip(out.iter_mut()) {
+        let steps = upper.iter().chain(lower);
+        for ((step, c), o) in steps.zip(&self.consts).zip(out.iter_mut()) {
             let ut = scale_v(uq, c.two_g);
             let (ub, tb) = down(step, ut, t);
-            *o = (tb[1], tb[0]);
+            *o = tb;
             t = tb;
             uq = scale_v(ub, 1.0 / c.two_g);
         }
-        s
+        u0
     }
 }
+
+/// A hash of a wavenumber's bits for the per-node caches: a multiplication and a fold, enough
+/// for keys that are quadrature nodes (the default SipHash cost more than the kernels).
+#[derive(Debug, Default, Clone, Copy)]
+pub struct NodeHasher(u64);
+
+impl Hasher for NodeHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(self.0.rotate_left(8) ^ u64::from(b));
+        }
+    }
+
+    fn write_u64(&mut self, k: u64) {
+        let h = k.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        self.0 = h ^ (h >> 32);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+/// A map from a wavenumber's bits to an index, hashed by [`NodeHasher`].
+pub type NodeMap = HashMap<u64, u32, BuildHasherDefault<NodeHasher>>;
+
+/// One wavenumber of a [`StackCache`]: the varied layer's face to the base below it, and S of
+/// the current stack (with its interface kernels, kept beside), valid if computed in
+/// the current generation.
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    /// The varied layer's face to the base.
+    face: Face,
+    generation: u64,
+    s: f64,
+}
+
+/// The kernels of a stack whose layers change thickness (or material) above a fixed base, per
+/// wavenumber: the base (the layers below the `varied` one and the substrate) is the same for
+/// every stack served, so its part of the upward recursion (its steps and the stiffness on top
+/// of it) is computed once per wavenumber and kept; each stack's own part (the layers from the
+/// top down to the varied one, and the downward pass) is computed once per wavenumber and kept
+/// until the next stack. The same operations as [`Stack::response_into`] in the same order:
+/// the values are the same to the last bit.
+///
+/// The base follows the stacks served ([`StackCache::serve`]): a stack that differs from the
+/// last one below the varied layer, or in the number of layers or the substrate, starts a new
+/// base below the deepest layer that differs (the top layer's when the stacks are unrelated).
+#[derive(Debug, Clone)]
+pub struct StackCache {
+    stack: Stack,
+    varied: usize,
+    generation: u64,
+    index: NodeMap,
+    /// The wavenumbers' bits, in the order of `nodes`.
+    keys: Vec<u64>,
+    /// The node last asked for: the evaluations ask for the nodes in the same order every time,
+    /// so the next one is usually the node after it, found without hashing.
+    cursor: usize,
+    nodes: Vec<Node>,
+    /// Per node, the steps of the base's layers (top first), `stack.layers.len() − varied − 1`
+    /// of them.
+    base_steps: Vec<Step>,
+    /// Per node, (f_k, g_k) of the current stack, `stack.layers.len()` of them.
+    interfaces: Vec<(f64, f64)>,
+    /// The steps of the layers above the base at the node being evaluated.
+    scratch: Vec<Step>,
+}
+
+impl StackCache {
+    /// A cache serving `stack`, with the base below its top layer.
+    pub fn new(stack: Stack) -> Self {
+        Self {
+            stack,
+            varied: 0,
+            generation: 1,
+            index: NodeMap::default(),
+            keys: Vec::new(),
+            cursor: 0,
+            nodes: Vec::new(),
+            base_steps: Vec::new(),
+            interfaces: Vec::new(),
+            scratch: vec![EMPTY_STEP; MAX_LAYERS],
+        }
+    }
+
+    /// The stack served.
+    pub fn stack(&self) -> &Stack {
+        &self.stack
+    }
+
+    /// The layer (index, 0 = top) above the base: the deepest layer that may change.
+    pub fn varied(&self) -> usize {
+        self.varied
+    }
+
+    /// How many wavenumbers are kept.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Whether no wavenumber is kept.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Serve `stack` from now on: the responses kept are dropped unless it is the stack served,
+    /// the base is kept if it is `stack`'s too.
+    pub fn serve(&mut self, stack: &Stack) {
+        if *stack == self.stack {
+            return;
+        }
+        let related = stack.layers.len() == self.stack.layers.len()
+            && stack.substrate == self.stack.substrate;
+        let deepest = stack
+            .layers
+            .iter()
+            .zip(&self.stack.layers)
+            .rposition(|(a, b)| a != b);
+        match deepest {
+            Some(v) if related && v <= self.varied => {}
+            _ => {
+                self.varied = match deepest {
+                    Some(v) if related => v,
+                    _ => 0,
+                };
+                self.index.clear();
+                self.keys.clear();
+                self.nodes.clear();
+                self.base_steps.clear();
+                self.interfaces.clear();
+            }
+        }
+        self.stack = stack.clone();
+        self.generation += 1;
+    }
+
+    /// S of the stack served at wavenumber q ≥ 0 (1/m): the value of [`Stack::response_into`].
+    pub fn s(&mut self, q: f64) -> f64 {
+        self.response(q).0
+    }
+
+    /// S and every (f_k, g_k) of the stack served at wavenumber q ≥ 0 (1/m): the values of
+    /// [`Stack::response_into`].
+    pub fn response(&mut self, q: f64) -> (f64, &[(f64, f64)]) {
+        let n = self.stack.layers.len();
+        let below = n - self.varied - 1;
+        let next = self.nodes.len();
+        let bits = q.to_bits();
+        let i = match self.keys.get(self.cursor + 1) {
+            Some(&k) if k == bits => self.cursor + 1,
+            _ => *self.index.entry(bits).or_insert(next as u32) as usize,
+        };
+        self.cursor = i;
+        if i == next {
+            self.keys.push(bits);
+            let sub = self.stack.substrate_stiffness();
+            let steps = &mut self.scratch[..below];
+            let base_k = self.stack.up(q, self.varied + 1, sub, steps);
+            let c = &self.stack.consts[self.varied];
+            let face = Face::new(c, scale(&base_k, 1.0 / c.two_g));
+            self.base_steps.extend_from_slice(steps);
+            self.interfaces
+                .extend_from_slice(&[(0.0, 0.0); MAX_LAYERS][..n]);
+            self.nodes.push(Node {
+                face,
+                generation: 0,
+                s: 0.0,
+            });
+        }
+        let node = &mut self.nodes[i];
+        let interfaces = &mut self.interfaces[i * n..(i + 1) * n];
+        if node.generation != self.generation {
+            let upper = &mut self.scratch[..=self.varied];
+            let k_pa = self.stack.up_from_face(q, &node.face, upper);
+            let lower = &self.base_steps[i * below..(i + 1) * below];
+            node.s = self.stack.down(k_pa, upper, lower, interfaces);
+            node.generation = self.generation;
+        }
+        (node.s, interfaces)
+    }
+}
+
+/// A placeholder step, overwritten before it is read.
+const EMPTY_STEP: Step = Step::Thick {
+    kb: I2,
+    v_of_t: I2,
+    b: I2,
+};
 
 fn scale_v(v: V2, s: f64) -> V2 {
     [v[0] * s, v[1] * s]
@@ -457,7 +695,8 @@ fn scale_v(v: V2, s: f64) -> V2 {
 
 /// The thin-layer step: K̃_t from K̃_b with the propagator Q = exp(−xA).
 fn thin_up(c: &Consts, x: f64, kb: M2) -> (M2, Step) {
-    let [quu, qut, qtu, qtt] = blocks(&c.propagator_minus_i(x, -1.0));
+    let (p, q) = c.propagators_minus_i(x);
+    let [quu, qut, qtu, qtt] = blocks(&q);
     let x_m = add(&add(&qtu, &kb), &mul(&qtt, &kb));
     let y_m = add(&add(&I2, &quu), &mul(&qut, &kb));
     let kt = mul_sym(&x_m, &inv(&y_m));
@@ -465,19 +704,43 @@ fn thin_up(c: &Consts, x: f64, kb: M2) -> (M2, Step) {
         kb,
         x_inv: inv(&x_m),
         y: y_m,
-        p: c.propagator_minus_i(x, 1.0),
+        p,
     };
     (kt, step)
 }
 
+/// What a layer's step needs of the stiffness below it, in the layer's units: K̃_b, and for the
+/// thick step (K_u − K̃_b)⁻¹ and K̃_b − K_d.
+#[derive(Debug, Clone, Copy)]
+struct Face {
+    kb: M2,
+    ku_kb_inv: M2,
+    kb_kd: M2,
+}
+
+impl Face {
+    /// The face of layer `c` on the stiffness K̃_b (in its units) below it.
+    fn new(c: &Consts, kb: M2) -> Self {
+        Self {
+            kb,
+            ku_kb_inv: inv(&sub(&c.ku, &kb)),
+            kb_kd: sub(&kb, &c.kd),
+        }
+    }
+}
+
 /// The thick-layer step: K̃_t from K̃_b with decaying exponentials only.
-fn thick_up(c: &Consts, x: f64, kb: M2) -> (M2, Step) {
+fn thick_up(c: &Consts, x: f64, face: &Face) -> (M2, Step) {
+    let Face {
+        kb,
+        ku_kb_inv,
+        kb_kd,
+    } = *face;
     let e = (-x).exp();
     let xk = x / c.kappa;
     let ed = scale(&[[1.0 - xk, xk], [-xk, 1.0 + xk]], e);
     let eu = scale(&[[1.0 - xk, -xk], [xk, 1.0 + xk]], e);
-    let ku_kb_inv = inv(&sub(&c.ku, &kb));
-    let r = mul(&ku_kb_inv, &mul(&sub(&kb, &c.kd), &ed));
+    let r = mul(&ku_kb_inv, &mul(&kb_kd, &ed));
     let er = mul(&eu, &r);
     let i_er = add(&I2, &er);
     let kt = add(&c.kd, &mul_sym(&scale(&er, c.ku_minus_kd()), &inv(&i_er)));

@@ -276,3 +276,53 @@ fn invalid_stacks_are_rejected_with_a_reason() {
     .unwrap();
     assert_eq!(s.depths(), vec![1e-5, 1e-5]);
 }
+
+/// The per-node cache of a d_min search (`StackCache`) gives the exact recursion's values to the
+/// last bit while one layer after another changes thickness: 10 layers at neighbour modulus
+/// ratios 1e±8 with ν = ½ among them, q z from 1e-8 to 1e4, every node asked for twice.
+#[test]
+fn stack_cache_equals_the_exact_recursion() {
+    use coatcheck::layer::stack::StackCache;
+    let base: Vec<Layer> = (0..MAX_LAYERS)
+        .map(|k| {
+            let e = if k % 2 == 0 { 1.0 } else { 1e8 };
+            let nu = [0.5, 0.3, 0.0, 0.45, 0.49985][k % 5];
+            layer(e, nu, 0.05 + 0.01 * k as f64)
+        })
+        .collect();
+    let sub = el(1e-8, 0.5);
+    let mut cache = StackCache::new(Stack::new(base.clone(), sub).unwrap());
+    for varied in [0, 0, 3, 3, 9, 1] {
+        for d in [1e-9, 0.02, 0.3, 7.0] {
+            let mut layers = base.clone();
+            layers[varied].thickness = d;
+            let stack = Stack::new(layers, sub).unwrap();
+            cache.serve(&stack);
+            assert!(cache.varied() >= varied);
+            for _ in 0..2 {
+                for q in (0..=48).map(|i| 10f64.powf(-8.0 + 0.25 * f64::from(i))) {
+                    let want = stack.response(q);
+                    let (s, got) = cache.response(q);
+                    assert_eq!(
+                        s.to_bits(),
+                        want.s.to_bits(),
+                        "layer {varied} at {d}, q {q}"
+                    );
+                    for (a, b) in got.iter().zip(&want.interfaces) {
+                        assert_eq!(
+                            a.0.to_bits(),
+                            b.0.to_bits(),
+                            "f, layer {varied} at {d}, q {q}"
+                        );
+                        assert_eq!(
+                            a.1.to_bits(),
+                            b.1.to_bits(),
+                            "g, layer {varied} at {d}, q {q}"
+                        );
+                    }
+                    assert_eq!(cache.s(q).to_bits(), want.s.to_bits());
+                }
+            }
+        }
+    }
+}
