@@ -507,6 +507,19 @@ const TAIL: &[Column] = &[
     ("verify_realisations", |r| {
         Cell::Number(r.verify_realisations.map(|k| k as f64))
     }),
+    ("robust_verdict", |r| {
+        Cell::Text(r.robust_verdict.map(Into::into))
+    }),
+    ("robust_governing_check", |r| {
+        Cell::Text(r.robust_governing_check.map(Into::into))
+    }),
+    ("robust_margin", |r| Cell::Number(r.robust_margin)),
+    ("robust_min_thickness_m_min", |r| {
+        Cell::Number(r.robust_min_thickness_m_min)
+    }),
+    ("robust_min_thickness_m_max", |r| {
+        Cell::Number(r.robust_min_thickness_m_max)
+    }),
     ("worst_file", |r| Cell::Text(r.worst_file.clone())),
     ("files", |r| Cell::Count(r.files as u64)),
     ("warnings", |r| {
