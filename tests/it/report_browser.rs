@@ -4,7 +4,7 @@
 //! `COATCHECK_REQUIRE_CHROMIUM` is set (CI sets it, and installs Chromium).
 
 use crate::common::run;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn chromium() -> Option<&'static str> {
@@ -62,31 +62,48 @@ fn ink(png: &Path) -> f64 {
     1.0 - background as f64 / pixels.len() as f64
 }
 
-#[test]
-fn the_report_renders_with_its_plots_axes_and_labels() {
-    let Some(browser) = chromium() else {
+/// Chromium, or `None` when it is missing and not required (`COATCHECK_REQUIRE_CHROMIUM`).
+fn required_chromium() -> Option<&'static str> {
+    let browser = chromium();
+    if browser.is_none() {
         assert!(
             std::env::var_os("COATCHECK_REQUIRE_CHROMIUM").is_none(),
             "Chromium is required here (COATCHECK_REQUIRE_CHROMIUM) but not found"
         );
         eprintln!("skipped: no Chromium on this machine");
-        return;
-    };
+    }
+    browser
+}
+
+/// `check SCENE --report` into a temporary directory, the exit code one of `codes`: the
+/// directory and the page.
+fn report_page(scene: &str, codes: &[i32]) -> (tempfile::TempDir, PathBuf, String) {
     let dir = tempfile::tempdir().unwrap();
     let html = dir.path().join("report.html");
-    let o = run(&[
-        "check",
-        "examples/paper-rubber-on-steel.toml",
-        "--report",
-        html.to_str().unwrap(),
-    ]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
+    let o = run(&["check", scene, "--report", html.to_str().unwrap()]);
+    assert!(
+        o.status.code().is_some_and(|c| codes.contains(&c)),
         "{}",
         String::from_utf8_lossy(&o.stderr)
     );
     let page = std::fs::read_to_string(&html).unwrap();
+    (dir, html, page)
+}
+
+/// The page rendered at `size` (px) is not blank.
+fn renders_with_ink(browser: &str, dir: &Path, html: &Path, size: (u32, u32)) {
+    let png = dir.join("report.png");
+    screenshot(browser, html, &png, size);
+    let share = ink(&png);
+    assert!(share > 0.02, "the screenshot is almost blank ({share})");
+}
+
+#[test]
+fn the_report_renders_with_its_plots_axes_and_labels() {
+    let Some(browser) = required_chromium() else {
+        return;
+    };
+    let (dir, html, page) = report_page("examples/paper-rubber-on-steel.toml", &[0]);
     for want in [
         "PASS",
         "Roughness power spectrum",
@@ -106,38 +123,17 @@ fn the_report_renders_with_its_plots_axes_and_labels() {
     for network in ["src=\"http", "href=\"http", "<script", "url(http"] {
         assert!(!page.contains(network), "the page loads {network}");
     }
-    let png = dir.path().join("report.png");
-    screenshot(browser, &html, &png, (1000, 4000));
-    let share = ink(&png);
-    assert!(share > 0.02, "the screenshot is almost blank ({share})");
+    renders_with_ink(browser, dir.path(), &html, (1000, 4000));
 }
 
 /// A layer stack's report renders too: its interface table (every interface by name) and its
 /// checks with their places are on the page, and the screenshot is not blank.
 #[test]
 fn a_stack_report_renders_with_its_interfaces() {
-    let Some(browser) = chromium() else {
-        assert!(
-            std::env::var_os("COATCHECK_REQUIRE_CHROMIUM").is_none(),
-            "Chromium is required here (COATCHECK_REQUIRE_CHROMIUM) but not found"
-        );
-        eprintln!("skipped: no Chromium on this machine");
+    let Some(browser) = required_chromium() else {
         return;
     };
-    let dir = tempfile::tempdir().unwrap();
-    let html = dir.path().join("stack.html");
-    let o = run(&[
-        "check",
-        "examples/rubber-epoxy-primer-steel.toml",
-        "--report",
-        html.to_str().unwrap(),
-    ]);
-    assert!(
-        o.status.code().is_some_and(|c| c <= 1),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    let page = std::fs::read_to_string(&html).unwrap();
+    let (dir, html, page) = report_page("examples/rubber-epoxy-primer-steel.toml", &[0, 1]);
     for want in [
         "Interfaces (Persson",
         "τ_peak [MPa]",
@@ -150,8 +146,5 @@ fn a_stack_report_renders_with_its_interfaces() {
     ] {
         assert!(page.contains(want), "the page lacks '{want}'");
     }
-    let png = dir.path().join("stack.png");
-    screenshot(browser, &html, &png, (1000, 3000));
-    let share = ink(&png);
-    assert!(share > 0.02, "the screenshot is almost blank ({share})");
+    renders_with_ink(browser, dir.path(), &html, (1000, 3000));
 }
