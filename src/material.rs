@@ -364,6 +364,24 @@ pub fn parse_entry(text: &str, path: &Path) -> Result<Entry, Error> {
         Some(f) => Some(ctx.positive(f, "yield_strength", Dim::Pressure)?),
         None => None,
     };
+    let ranges = solid_ranges(&ctx, &raw, (e, nu, yield_strength))?;
+    Ok(Entry::Material(Material {
+        name,
+        kind,
+        elastic,
+        yield_strength,
+        source,
+        ranges,
+    }))
+}
+
+/// The ranges of a film's or a substrate's properties (`*_range` keys), each holding its
+/// nominal value (E, ν and the yield strength, when the file gives one).
+fn solid_ranges(
+    ctx: &Ctx<'_>,
+    raw: &RawEntry,
+    (e, nu, yield_strength): (f64, f64, Option<f64>),
+) -> Result<Ranges, Error> {
     let span = |f: &Option<Field>, key: &str, dim, of, nominal: Option<f64>| {
         let Some(f) = f else { return Ok(None) };
         let nominal = nominal.ok_or_else(|| {
@@ -373,7 +391,7 @@ pub fn parse_entry(text: &str, path: &Path) -> Result<Entry, Error> {
                 "a range without its nominal value (give yield_strength too)",
             )
         })?;
-        read_span(&ctx, f, key, dim, of, nominal).map(Some)
+        read_span(ctx, f, key, dim, of, nominal).map(Some)
     };
     let (e_key, nu_key, y_key) = (
         "youngs_modulus_range",
@@ -402,20 +420,12 @@ pub fn parse_entry(text: &str, path: &Path) -> Result<Entry, Error> {
         yield_strength,
     )?;
     let any = youngs_modulus.is_some() || poisson_ratio.is_some() || strength.is_some();
-    let ranges = Ranges {
+    Ok(Ranges {
         youngs_modulus,
         poisson_ratio,
         strength,
-        source: range_source(&ctx, &raw, any)?,
-    };
-    Ok(Entry::Material(Material {
-        name,
-        kind,
-        elastic,
-        yield_strength,
-        source,
-        ranges,
-    }))
+        source: range_source(ctx, raw, any)?,
+    })
 }
 
 /// The file's `range_source`: required with any range, and only with one.
