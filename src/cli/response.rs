@@ -120,7 +120,7 @@ fn err(v: f64) -> f64 {
 
 /// The rounding of a value below the normal range (into the subnormals, or to 0), as the whole
 /// smallest subnormal.
-fn flush(v: f64) -> f64 {
+pub(super) fn flush(v: f64) -> f64 {
     if v.abs() < f64::MIN_POSITIVE {
         SMALLEST_SUBNORMAL
     } else {

@@ -1,7 +1,7 @@
 //! `coatcheck response --layer E,nu,d [--layer …] --substrate E,nu --q …`: S(q) and, at every
 //! interface k (top first), f_k(q) and g_k(q) of a layer stack ([`coatcheck::layer::stack`]).
 
-use super::response::{Format, ResponseArgs, elastic, parse_values};
+use super::response::{Format, ResponseArgs, elastic, flush, parse_values};
 use coatcheck::Error;
 use coatcheck::layer::stack::{Layer, STACK_RTOL, Stack, StackResponse};
 use coatcheck::units::{Dim, parse_quantity};
@@ -30,9 +30,11 @@ pub(super) fn layer(text: &str) -> Result<Layer, Error> {
     })
 }
 
-/// The error estimate of a kernel value (absolute).
+/// The error estimate of a kernel value (absolute): relative [`STACK_RTOL`], plus the smallest
+/// subnormal for a value below f64's normal range (f_k and g_k round into the subnormals above
+/// q·z_k ≈ 700, and to 0 beyond them), as for the film's kernels.
 fn err(v: f64) -> f64 {
-    STACK_RTOL * v.abs()
+    STACK_RTOL * v.abs() + flush(v)
 }
 
 /// Column names: q, S, then f1, g1, f2, g2, ….

@@ -206,6 +206,43 @@ fn stack_columns_and_limits() {
     }
 }
 
+/// Deep interfaces: where f_k and g_k leave f64's normal range (q·z ≳ 708) their error is at
+/// least the smallest subnormal, so a value rounded to 0 is reported as 0 ± 5e-324, never
+/// 0 ± 0; above it the error stays relative.
+#[test]
+fn stack_errors_cover_the_flush_below_the_normal_range() {
+    let (code, out, _) = run(&[
+        "response",
+        "--layer",
+        "3GPa,0.35,10um",
+        "--layer",
+        "3GPa,0.35,20um",
+        "--substrate",
+        "3GPa,0.35",
+        "--q",
+        "1e6,2.4e7,1e8",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(code, 0);
+    let rtol = coatcheck::layer::stack::STACK_RTOL;
+    let tiny = f64::from_bits(1);
+    let mut flushed = 0;
+    for line in out.lines().skip(1) {
+        let row: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
+        for k in 0..5 {
+            let (v, e) = (row[1 + 2 * k], row[2 + 2 * k]);
+            if v.abs() < f64::MIN_POSITIVE {
+                assert_eq!(e, rtol * v.abs() + tiny, "{line}");
+                flushed += 1;
+            } else {
+                assert_eq!(e, rtol * v.abs(), "{line}");
+            }
+        }
+    }
+    assert!(flushed >= 4, "the deep rows reach the subnormals: {out}");
+}
+
 /// Bad stacks: a layer without thickness, 11 layers, `--layer` with `--qd`, no `--q`: exit 2
 /// with a message naming the flag.
 #[test]
