@@ -309,6 +309,14 @@ mod tests {
     }
 
     /// The library's NBR on carbon steel with a chemlok-type bond, its ranges, and the design.
+    /// The nominal check of `design` at thickness `d`.
+    fn nominal(spectrum: &Spectrum, design: &Design, d: f64) -> crate::check::Outcome {
+        Checker::new(spectrum, design.clone(), Settings::default())
+            .unwrap()
+            .run(d)
+            .unwrap()
+    }
+
     fn nbr_on_steel() -> (Design, Vec<(Param, Span)>) {
         let lib = Library::builtin().unwrap();
         let (film, substrate, bond) = (
@@ -437,10 +445,7 @@ mod tests {
         let (design, _) = nbr_on_steel();
         let spectrum = flange();
         let d = 25e-6;
-        let nominal = Checker::new(&spectrum, design.clone(), Settings::default())
-            .unwrap()
-            .run(d)
-            .unwrap();
+        let nominal = nominal(&spectrum, &design, d);
         let points: Vec<(Param, Span)> = Param::ALL
             .into_iter()
             .map(|p| (p, Span::point(p.value(&design).unwrap())))
@@ -467,10 +472,7 @@ mod tests {
         let (design, ranges) = nbr_on_steel();
         let spectrum = flange();
         let d = 25e-6;
-        let nominal = Checker::new(&spectrum, design.clone(), Settings::default())
-            .unwrap()
-            .run(d)
-            .unwrap();
+        let nominal = nominal(&spectrum, &design, d);
         let r = judge_robust(&spectrum, &design, Settings::default(), d, ranges.clone()).unwrap();
         assert_eq!(r.corners, 16);
         assert_eq!(r.ranges, ranges);
