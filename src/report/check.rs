@@ -403,6 +403,14 @@ pub fn human(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> String {
         ))
         .unwrap_or_default()
     );
+    out += &levers_and_warnings(levers, &outcome.warnings);
+    out
+}
+
+/// The lines under a verdict: what alone would make a failing design pass, then the warnings
+/// (a film's and a layer stack's table alike).
+pub(super) fn levers_and_warnings(levers: &[Lever], warnings: &[String]) -> String {
+    let mut out = String::new();
     if !levers.is_empty() {
         out += "what alone would make it pass:\n";
         for l in levers {
@@ -410,7 +418,7 @@ pub fn human(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> String {
             out.push('\n');
         }
     }
-    for w in &outcome.warnings {
+    for w in warnings {
         out += &wrap(&format!("warning: {w}"));
         out.push('\n');
     }

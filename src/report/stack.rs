@@ -261,16 +261,6 @@ pub fn human(scene: &Scene, o: &StackOutcome, levers: &[Lever]) -> String {
             ))
             .unwrap_or_default()
     );
-    if !levers.is_empty() {
-        out += "what alone would make it pass:\n";
-        for l in levers {
-            out += &wrap(&format!("  - {}", super::html::lever_text(l)));
-            out.push('\n');
-        }
-    }
-    for w in &o.warnings {
-        out += &wrap(&format!("warning: {w}"));
-        out.push('\n');
-    }
+    out += &super::check::levers_and_warnings(levers, &o.warnings);
     out
 }
