@@ -7,7 +7,7 @@ use crate::common::{json, run};
 use crate::formats::{flatten, parse_csv, same};
 use crate::schema::errors;
 use coatcheck::check::levers::{Lever, REL_TOL};
-use coatcheck::check::stack::{StackChecker, StackDesign, StackLayer};
+use coatcheck::check::stack::{StackChecker, StackDesign, StackLayer, StackOutcome};
 use coatcheck::check::stack_levers::stack_levers;
 use coatcheck::check::{Checks, Criteria};
 use coatcheck::layer::Elastic;
@@ -400,6 +400,17 @@ fn passes(s: &Spectrum, d: &StackDesign) -> bool {
         .unwrap()
 }
 
+/// The outcome of a stack that must fail, and its levers.
+fn failing_with_levers(s: &Spectrum, base: &StackDesign) -> (StackOutcome, Vec<Lever>) {
+    let outcome = StackChecker::new(s, base.clone(), Settings::default())
+        .unwrap()
+        .run()
+        .unwrap();
+    assert!(!outcome.pass);
+    let all = stack_levers(s, base, Settings::default(), &outcome).unwrap();
+    (outcome, all)
+}
+
 fn lever<'a>(all: &'a [Lever], name: &str) -> &'a Lever {
     all.iter().find(|l| l.name == name).expect(name)
 }
@@ -410,12 +421,7 @@ fn lever<'a>(all: &'a [Lever], name: &str) -> &'a Lever {
 fn each_stack_lever_alone_makes_a_failing_stack_pass() {
     let s = paper_spectrum();
     let base = rubber_on_primer(0.5e-6, (0.5e6, 0.5e6), 250e6, 1e5);
-    let outcome = StackChecker::new(&s, base.clone(), Settings::default())
-        .unwrap()
-        .run()
-        .unwrap();
-    assert!(!outcome.pass);
-    let all = stack_levers(&s, &base, Settings::default(), &outcome).unwrap();
+    let (outcome, all) = failing_with_levers(&s, &base);
     let failing: Vec<String> = outcome
         .checks
         .iter()
@@ -489,12 +495,7 @@ fn each_stack_lever_alone_makes_a_failing_stack_pass() {
 fn a_lighter_load_alone_makes_a_weak_stack_bond_pass() {
     let s = paper_spectrum();
     let base = rubber_on_primer(5e-6, (0.4e6, 10e6), 1e12, 1e5);
-    let outcome = StackChecker::new(&s, base.clone(), Settings::default())
-        .unwrap()
-        .run()
-        .unwrap();
-    assert!(!outcome.pass);
-    let all = stack_levers(&s, &base, Settings::default(), &outcome).unwrap();
+    let (_, all) = failing_with_levers(&s, &base);
     let p = lever(&all, "pressure")
         .value
         .expect("a lighter load passes");
