@@ -2,7 +2,7 @@
 //! `--verify`, a film or a layer stack): the spectrum of each roughness file, a [`Checker`]
 //! (a film) or a [`StackChecker`] (`[[layer]]` tables) on it, the outcome at the scene's
 //! thickness, optionally the exact check on the height map, or on realisations of the scene's
-//! spectrum when it has no map ([`crate::exact`], films), and the worst file when the scene
+//! spectrum when it has no map ([`crate::exact`]), and the worst file when the scene
 //! lists several. No physics of its own (paper App. B, eqs. B8–B12
 //! through [`crate::check`]).
 //!
@@ -14,15 +14,19 @@ use crate::check::levers::{Lever, levers};
 use crate::check::robust::{self, Robust};
 use crate::check::stack::{StackChecker, StackOutcome};
 use crate::check::stack_levers::stack_levers;
+use crate::check::stack_robust::{self, StackRobust};
 use crate::check::{CheckKind, CheckResult, Checker, MinThickness, Outcome};
 use crate::error::Error;
 use crate::exact::min_thickness::ExactMinThickness;
+use crate::exact::realisations::Grid;
+use crate::exact::stack::on_stack_surface;
+use crate::exact::stack_realisations::{StackRealisations, on_stack_realisations};
 use crate::exact::{ExactOptions, Realisations, on_realisations, on_surface};
 use crate::scene::{RoughnessSource, Scene};
 use crate::topography::io::{HeightKind, MapOptions, read_height_map, sniff};
 use crate::topography::plausible::{edge_mismatch_map, periodic_warning};
 use crate::verify::Verification;
-use crate::verify_stack::{self, StackVerification};
+use crate::verify_stack::StackVerification;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -57,7 +61,14 @@ pub struct Exact {
 #[derive(Debug, Clone, PartialEq)]
 pub struct StackExact {
     pub map: PathBuf,
+    /// The stress checks at every interface and, when min-thickness is enabled, the exact
+    /// d_min's check.
     pub verification: StackVerification,
+    /// The exact minimum thickness of the layer `criteria.thickness_of`, when min-thickness is
+    /// enabled.
+    pub min_thickness: Option<ExactMinThickness>,
+    /// The realisations of a scene without a height map.
+    pub realisations: Option<StackRealisations>,
 }
 
 /// The outcome of a film or of a layer stack.
@@ -162,6 +173,8 @@ pub struct Judged {
     pub levers: Vec<Lever>,
     /// The design at the worst corner of its materials' ranges (`--robust`), on the worst file.
     pub robust: Option<Robust>,
+    /// The same for a layer stack.
+    pub stack_robust: Option<StackRobust>,
 }
 
 impl Judged {
@@ -183,6 +196,7 @@ impl Judged {
                 .as_ref()
                 .is_none_or(|e| e.verification.pass)
             && self.robust.as_ref().is_none_or(|r| r.pass)
+            && self.stack_robust.as_ref().is_none_or(|r| r.pass)
     }
 }
 
@@ -344,15 +358,10 @@ pub fn judge_exact(scene: &Scene, exact: Option<&ExactOptions>) -> Result<Judged
         }
         _ => Vec::new(),
     };
-    let robust = match (&outcome, scene.robust) {
-        (_, false) => None,
-        (Verdict::Film(film), true) => Some(robust::judge_scene(&scene, film.thickness)?),
-        (Verdict::Stack(_), true) => {
-            return Err(Error::Value {
-                origin: "--robust (criteria.robust)".into(),
-                msg: "not available for a layer stack ([[layer]] tables)".into(),
-            });
-        }
+    let (robust, stack_robust) = match (&outcome, scene.robust) {
+        (_, false) => (None, None),
+        (Verdict::Film(film), true) => (Some(robust::judge_scene(&scene, film.thickness)?), None),
+        (Verdict::Stack(_), true) => (None, Some(stack_robust::judge_scene(&scene)?)),
     };
     Ok(Judged {
         scene,
@@ -364,31 +373,63 @@ pub fn judge_exact(scene: &Scene, exact: Option<&ExactOptions>) -> Result<Judged
         stack_exact,
         levers,
         robust,
+        stack_robust,
     })
 }
 
-/// The exact check of `check --verify` on a layer stack: on the scene's height map, judged at
-/// every interface ([`crate::verify_stack`]).
+/// The exact check of `check --verify` on a layer stack: on the scene's height map, or on
+/// realisations of its spectrum when the roughness is a spectrum or a model, judged at every
+/// interface, with the exact minimum thickness ([`crate::exact::stack`]).
 fn stack_exact_check(
     scene: &Scene,
     opts: &ExactOptions,
     warnings: &mut Vec<String>,
 ) -> Result<StackExact, Error> {
-    let RoughnessSource::Profile { path } = &scene.roughness.source else {
-        return Err(Error::Value {
-            origin: origin(scene),
-            msg: "--verify on a layer stack solves the contact on the measured surface: give \
-                  the roughness as a height map (roughness.profile or --profile), not as a \
-                  spectrum or a model"
-                .into(),
+    let design = scene.stack_design();
+    if let RoughnessSource::Profile { path } = &scene.roughness.source {
+        let (surface, mismatch) = scene_map(path)?;
+        warnings.extend(periodic_warning(path, mismatch));
+        let (verification, min_thickness) = on_stack_surface(&surface, &design, &opts.bem)?;
+        return Ok(StackExact {
+            map: path.clone(),
+            verification,
+            min_thickness,
+            realisations: None,
         });
-    };
-    let (surface, mismatch) = scene_map(path)?;
-    warnings.extend(periodic_warning(path, mismatch));
-    let verification = verify_stack::verify(&surface, &scene.stack_design(), &opts.bem)?;
+    }
+    let (spectrum, _) = scene.roughness.spectrum()?;
+    let (verification, min_thickness, realisations) =
+        on_stack_realisations(&spectrum, &design, opts)?;
+    warnings.extend(unresolved_warning(&realisations.grid));
     Ok(StackExact {
-        map: path.clone(),
+        map: spectrum_source(scene),
         verification,
+        min_thickness,
+        realisations: Some(realisations),
+    })
+}
+
+/// The spectrum file of the realisations (`model` for a model spectrum).
+fn spectrum_source(scene: &Scene) -> PathBuf {
+    scene
+        .roughness
+        .file()
+        .map_or_else(|| PathBuf::from("model"), Path::to_path_buf)
+}
+
+/// The warning that the realisations' grid leaves part of the slope variance out.
+fn unresolved_warning(grid: &Grid) -> Option<String> {
+    let share = grid.unresolved_slope_share;
+    (share > 0.0).then(|| {
+        format!(
+            "the realisations' {n} x {n} grid holds the spectrum up to q = {q:.4e} 1/m of \
+             {hi:.4e} 1/m: {pct:.3} % of the slope variance lies above it and is not in the \
+             exact solves (raise --realisation-grid)",
+            n = grid.n,
+            q = grid.q_nyquist,
+            hi = grid.q_high,
+            pct = 100.0 * share
+        )
     })
 }
 
@@ -416,23 +457,9 @@ fn exact_check(
     let (spectrum, _) = scene.roughness.spectrum()?;
     let (verification, min_thickness, realisations) =
         on_realisations(&spectrum, &design, thickness, &outcome.evaluation, opts)?;
-    let share = realisations.grid.unresolved_slope_share;
-    if share > 0.0 {
-        warnings.push(format!(
-            "the realisations' {n} x {n} grid holds the spectrum up to q = {q:.4e} 1/m of \
-             {hi:.4e} 1/m: {pct:.3} % of the slope variance lies above it and is not in the \
-             exact solves (raise --realisation-grid)",
-            n = realisations.grid.n,
-            q = realisations.grid.q_nyquist,
-            hi = realisations.grid.q_high,
-            pct = 100.0 * share
-        ));
-    }
+    warnings.extend(unresolved_warning(&realisations.grid));
     Ok(Exact {
-        map: scene
-            .roughness
-            .file()
-            .map_or_else(|| PathBuf::from("model"), Path::to_path_buf),
+        map: spectrum_source(scene),
         verification,
         min_thickness,
         realisations: Some(realisations),

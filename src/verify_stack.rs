@@ -19,7 +19,7 @@
 
 use crate::bem::{
     BemSettings, BemSolution, Convergence, FieldStats, InterfaceFields, Surface, solve_stack,
-    stack_interface_fields,
+    solve_stack_from, stack_interface_fields,
 };
 use crate::check::stack::StackDesign;
 use crate::check::{CheckKind, criteria};
@@ -96,13 +96,29 @@ pub fn solve(
     p0: f64,
     settings: &BemSettings,
 ) -> Result<(BemSolution, Vec<InterfaceFields>), Error> {
-    let sol = converged(surface, solve_stack(surface, stack, p0, settings)?)?;
+    solve_warm(surface, stack, p0, settings, None)
+}
+
+/// [`solve`], warm-started from the pressure field `start` when given
+/// ([`crate::bem::solve_stack_from`]).
+pub fn solve_warm(
+    surface: &Surface,
+    stack: &Stack,
+    p0: f64,
+    settings: &BemSettings,
+    start: Option<&[f64]>,
+) -> Result<(BemSolution, Vec<InterfaceFields>), Error> {
+    let sol = match start {
+        Some(start) => solve_stack_from(surface, stack, p0, settings, start)?,
+        None => solve_stack(surface, stack, p0, settings)?,
+    };
+    let sol = converged(surface, sol)?;
     let fields = stack_interface_fields(&sol, stack)?;
     Ok((sol, fields))
 }
 
 /// The numbers of one interface of one solve.
-struct SolvedInterface {
+pub(crate) struct SolvedInterface {
     sigma_rms: f64,
     tau_rms: f64,
     tau_level: f64,
@@ -114,13 +130,15 @@ struct SolvedInterface {
 }
 
 /// The numbers of one solve.
-struct Solved {
-    area: f64,
-    area_tol: f64,
-    mean_pressure: f64,
+pub(crate) struct Solved {
+    pub(crate) area: f64,
+    pub(crate) area_tol: f64,
+    pub(crate) mean_pressure: f64,
     sigma_top: f64,
-    interfaces: Vec<SolvedInterface>,
-    convergence: Convergence,
+    pub(crate) interfaces: Vec<SolvedInterface>,
+    pub(crate) convergence: Convergence,
+    /// The solved contact pressure (Pa), to warm-start a neighbouring solve.
+    pub(crate) pressure: Vec<f64>,
 }
 
 /// The stack of a design at its layers' thicknesses.
@@ -136,14 +154,16 @@ pub fn design_stack(design: &StackDesign) -> Result<Stack, Error> {
     Stack::new(layers, design.substrate)
 }
 
-fn solve_one(
+/// One solve of `design` on `stack` (warm-started from `start` when given) and its numbers.
+pub(crate) fn solve_one(
     surface: &Surface,
     stack: &Stack,
     design: &StackDesign,
     settings: &BemSettings,
+    start: Option<&[f64]>,
 ) -> Result<Solved, Error> {
     let p0 = design.pressure;
-    let (sol, fields) = solve(surface, stack, p0, settings)?;
+    let (sol, fields) = solve_warm(surface, stack, p0, settings, start)?;
     let eps = design.criteria.epsilon;
     let interfaces = fields
         .into_iter()
@@ -172,6 +192,7 @@ fn solve_one(
         sigma_top: sol.sigma_rms_top,
         interfaces,
         convergence: sol.convergence,
+        pressure: sol.pressure,
     })
 }
 
@@ -187,7 +208,7 @@ fn estimate(fine: f64, coarse: Option<f64>, floor: f64) -> Estimate {
 }
 
 /// One interface's exact summary from the two solves.
-fn interface(
+pub(crate) fn interface(
     design: &StackDesign,
     k: usize,
     depth: f64,
@@ -217,7 +238,7 @@ fn interface(
 }
 
 /// The enabled checks on the exact interfaces (module docs).
-fn judge(
+pub(crate) fn judge(
     design: &StackDesign,
     interfaces: &[InterfaceExact],
     mean: Estimate,
@@ -275,9 +296,9 @@ pub fn verify(
 ) -> Result<StackVerification, Error> {
     let started = std::time::Instant::now();
     let stack = design_stack(design)?;
-    let fine = solve_one(surface, &stack, design, settings)?;
+    let fine = solve_one(surface, &stack, design, settings, None)?;
     let coarse = half(surface)
-        .map(|s| solve_one(&s?, &stack, design, settings))
+        .map(|s| solve_one(&s?, &stack, design, settings, None))
         .transpose()?;
     let top = |f: fn(&Solved) -> f64, floor| estimate(f(&fine), coarse.as_ref().map(f), floor);
     let area_fraction = top(|s| s.area, fine.area_tol);

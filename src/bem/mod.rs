@@ -46,7 +46,7 @@
 mod fft;
 pub mod sliding;
 mod stack;
-pub use stack::{solve_stack, stack_interface_fields};
+pub use stack::{solve_stack, solve_stack_from, stack_interface_fields};
 
 use crate::error::Error;
 use crate::layer::Stack;

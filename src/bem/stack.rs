@@ -5,7 +5,7 @@
 
 use super::{
     BemSettings, BemSolution, InterfaceFields, Surface, interface_fields_with,
-    solve_with_compliance,
+    solve_compliance_from, solve_with_compliance,
 };
 use crate::error::Error;
 use crate::layer::stack::{MAX_LAYERS, Stack};
@@ -31,6 +31,26 @@ pub fn solve_stack(
         |q| 2.0 * response(stack, q).0 / (q * e1),
         p0,
         settings,
+    )
+}
+
+/// [`solve_stack`] warm-started from the pressure field `start` (Pa, one value per pixel, e.g.
+/// the solution of a neighbouring thickness), as [`super::solve_from`] does for a film: the same
+/// converged contact, in fewer iterations.
+pub fn solve_stack_from(
+    surface: &Surface,
+    stack: &Stack,
+    p0: f64,
+    settings: &BemSettings,
+    start: &[f64],
+) -> Result<BemSolution, Error> {
+    let e1 = stack.layers()[0].material.e_star();
+    solve_compliance_from(
+        surface,
+        |q| 2.0 * response(stack, q).0 / (q * e1),
+        p0,
+        settings,
+        Some(start),
     )
 }
 

@@ -21,7 +21,7 @@
 //! would make a failing design pass in [`levers`]; the same checks at every interface of a
 //! layer stack in [`stack`], its levers in [`stack_levers`]; what the film's and the stack's
 //! checkers share in `basis`; the design at the worst corner of its materials' ranges in
-//! [`robust`].
+//! [`robust`] (a stack's in [`stack_robust`]).
 //!
 //! ## Validity
 //! The outcome carries a warning, with the number that triggered it, where the theory is
@@ -42,6 +42,7 @@ pub mod min_thickness;
 pub mod robust;
 pub mod stack;
 pub mod stack_levers;
+pub mod stack_robust;
 #[cfg(test)]
 mod tests;
 

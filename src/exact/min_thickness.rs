@@ -68,7 +68,7 @@ impl ExactMinThickness {
 
 /// The largest value/limit of the exact stress checks at one solve, its relative error (the
 /// solver tolerance's share of A/A0, which sets the mean contact pressure) and its check.
-fn utilisation(checks: &[ExactCheck], area: f64, area_tol: f64) -> Utilisation {
+pub(crate) fn utilisation(checks: &[ExactCheck], area: f64, area_tol: f64) -> Utilisation {
     checks.iter().fold(
         Utilisation {
             value: 0.0,
@@ -127,6 +127,22 @@ pub fn search(
     design: &Design,
     settings: &BemSettings,
 ) -> Result<(MinThickness, usize, usize), Error> {
+    search_with(surface, &mut |s, d, start| {
+        exact_utilisation(s, design, settings, d, start)
+    })
+}
+
+/// The exact utilisation at one thickness on a surface, warm-started from a pressure field:
+/// the utilisation, the solved pressure and the solver's iterations.
+pub(crate) type Solve<'a> =
+    dyn FnMut(&Surface, f64, Option<&[f64]>) -> Result<(Utilisation, Vec<f64>, usize), Error> + 'a;
+
+/// The search of [`search`] with the exact utilisation at (surface, thickness, warm start)
+/// given by `solve` (a film's, or a stack's with one layer varied).
+pub(crate) fn search_with(
+    surface: &Surface,
+    solve: &mut Solve<'_>,
+) -> Result<(MinThickness, usize, usize), Error> {
     let (lo, hi) = scan_range(surface.q_low(), q_grid_max(surface));
     let mut warm: Vec<(f64, Vec<f64>)> = Vec::new();
     let (mut solves, mut iterations) = (0, 0);
@@ -136,7 +152,7 @@ pub fn search(
             .iter()
             .min_by(|a, b| (a.0 - x).abs().total_cmp(&(b.0 - x).abs()))
             .map(|(_, p)| p.as_slice());
-        let (u, pressure, its) = exact_utilisation(surface, design, settings, d, start)?;
+        let (u, pressure, its) = solve(surface, d, start)?;
         solves += 1;
         iterations += its;
         if warm.len() == WARM_KEEP {
@@ -154,11 +170,22 @@ pub fn min_thickness(
     design: &Design,
     settings: &BemSettings,
 ) -> Result<ExactMinThickness, Error> {
-    let (fine, mut solves, mut iterations) = search(surface, design, settings)?;
+    min_thickness_with(surface, &mut |s, d, start| {
+        exact_utilisation(s, design, settings, d, start)
+    })
+}
+
+/// [`min_thickness`] with the exact utilisation given by `solve` ([`search_with`]): the search
+/// on the map and on the map at half the resolution.
+pub(crate) fn min_thickness_with(
+    surface: &Surface,
+    solve: &mut Solve<'_>,
+) -> Result<ExactMinThickness, Error> {
+    let (fine, mut solves, mut iterations) = search_with(surface, solve)?;
     let grid_err = match half(surface) {
         None => f64::NAN,
         Some(coarse) => {
-            let (c, s, i) = search(&coarse?, design, settings)?;
+            let (c, s, i) = search_with(&coarse?, solve)?;
             solves += s;
             iterations += i;
             match (fine.thickness, c.thickness) {

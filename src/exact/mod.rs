@@ -2,13 +2,17 @@
 //! ([`crate::verify`]), the minimum thickness searched with the exact solver
 //! ([`min_thickness`]), on the scene's height map or, for a scene given by a spectrum alone, on
 //! K random-phase realisations of that spectrum ([`realisations`]), each number then the mean
-//! over them with its spread.
+//! over them with its spread; on a layer stack, at every interface, with the minimum thickness
+//! of one layer ([`stack`], [`stack_min_thickness`]).
 //!
 //! The exact verdict: every enabled exact stress check passes at the design thickness and the
 //! thickness is at least the exact d_min (when min-thickness is enabled).
 
 pub mod min_thickness;
 pub mod realisations;
+pub mod stack;
+pub mod stack_min_thickness;
+pub mod stack_realisations;
 
 use crate::bem::{BemSettings, Surface};
 use crate::check::{Design, Evaluation};

@@ -127,7 +127,8 @@ pub fn spread(values: &[f64]) -> f64 {
     (var / k).sqrt()
 }
 
-fn mean(values: impl Iterator<Item = f64>) -> f64 {
+/// The mean of `values`.
+pub(crate) fn mean(values: impl Iterator<Item = f64>) -> f64 {
     let (s, n) = values.fold((0.0, 0usize), |(s, n), v| (s + v, n + 1));
     s / n as f64
 }

@@ -219,6 +219,9 @@ impl Record {
             r.verify_verdict = Some(if v.pass { "pass" } else { "fail" });
             r.verify_area_fraction = Some(v.area_fraction.value);
             r.verify_mean_contact_pressure_pa = Some(v.mean_contact_pressure.value);
+            let d = x.min_thickness.as_ref().and_then(|m| m.thickness());
+            r.verify_min_thickness_m = d.map(|d| d.value);
+            r.verify_min_thickness_m_err = d.map(|d| d.err);
         }
         if let Some(x) = &j.robust {
             r.robust_verdict = Some(if x.pass { "pass" } else { "fail" });
@@ -228,6 +231,17 @@ impl Record {
                 .iter()
                 .find(|c| Some(c.result.kind) == x.governing)
                 .and_then(|c| c.result.margin);
+            r.robust_min_thickness_m_min = x.min_thickness.and_then(|m| m.min);
+            r.robust_min_thickness_m_max = x.min_thickness.and_then(|m| m.max);
+        }
+        if let Some(x) = &j.stack_robust {
+            r.robust_verdict = Some(if x.pass { "pass" } else { "fail" });
+            r.robust_governing_check = x.governing.as_ref().map(|(k, _)| k.name());
+            r.robust_margin = x
+                .checks
+                .iter()
+                .find(|c| x.governing.as_ref() == Some(&(c.check.result.kind, c.check.at.clone())))
+                .and_then(|c| c.check.result.margin);
             r.robust_min_thickness_m_min = x.min_thickness.and_then(|m| m.min);
             r.robust_min_thickness_m_max = x.min_thickness.and_then(|m| m.max);
         }

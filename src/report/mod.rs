@@ -17,6 +17,7 @@ pub mod parquet;
 pub mod plot;
 pub mod robust;
 pub mod stack;
+pub mod stack_robust;
 pub mod stack_sweep;
 pub mod sweep;
 pub mod verify;

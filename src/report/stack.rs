@@ -31,9 +31,12 @@ pub fn scene(j: &Judged, o: &StackOutcome, format: Format) -> Result<String, Err
         Format::Table => {
             let mut t = format!("{}{}", batch::files_table(j), human(scene, o, &j.levers));
             if let Some(x) = &j.stack_exact {
+                t += &format!("\n{}", super::verify_stack::check_table(x, o));
+            }
+            if let Some(r) = &j.stack_robust {
                 t += &format!(
                     "\n{}",
-                    super::verify_stack::check_table(&x.map, o, &x.verification)
+                    super::stack_robust::table_text(r, &scene.stack_design(), o)
                 );
             }
             t
@@ -43,13 +46,14 @@ pub fn scene(j: &Judged, o: &StackOutcome, format: Format) -> Result<String, Err
             super::finite_only(&human(scene, o, &j.levers))?;
             let mut v = json(scene, o, &j.levers);
             if let Some(x) = &j.stack_exact {
-                super::finite_only(&super::verify_stack::check_table(
-                    &x.map,
-                    o,
-                    &x.verification,
-                ))?;
-                v["verify"] = super::verify_stack::check_json(&x.map, o, &x.verification);
+                super::finite_only(&super::verify_stack::check_table(x, o))?;
+                v["verify"] = super::verify_stack::check_json(x, o);
+                v["exact"] = super::verify_stack::exact_json(x, o);
                 v["verdict_with_verify"] = json!(if j.pass() { "pass" } else { "fail" });
+            }
+            if let Some(r) = &j.stack_robust {
+                v["robust"] = super::stack_robust::json_value(r, &scene.stack_design(), o);
+                v["verdict_with_robust"] = json!(if j.pass() { "pass" } else { "fail" });
             }
             if !j.files.is_empty() {
                 let worst = j.worst_file().map(|p| p.display().to_string());

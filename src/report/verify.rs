@@ -7,7 +7,6 @@ use crate::bem::{BemSolution, Convergence, FieldStats, InterfaceFields, Surface}
 use crate::check::{CheckKind, MinThickness, Outcome};
 use crate::contact::SlidingShear;
 use crate::error::Error;
-use crate::exact::Realisations;
 use crate::exact::min_thickness::ExactMinThickness;
 use crate::layer::Stack;
 use crate::pipeline::Exact;
@@ -387,9 +386,10 @@ pub fn check_table(x: &Exact, outcome: &Outcome) -> String {
     }
     if let Some(m) = &x.min_thickness {
         out += &wrap(&min_thickness_line(
+            "minimum thickness",
             outcome.min_thickness.as_ref(),
             m,
-            spread,
+            spread.map(|r| r.min_thickness_spread),
         ));
         out.push('\n');
     }
@@ -402,11 +402,12 @@ pub fn check_table(x: &Exact, outcome: &Outcome) -> String {
     out
 }
 
-/// Persson's and the exact minimum thickness side by side, with their errors.
-fn min_thickness_line(
+/// Persson's and the exact minimum thickness side by side, with their errors, after `what`.
+pub(super) fn min_thickness_line(
+    what: &str,
     persson: Option<&MinThickness>,
     m: &ExactMinThickness,
-    spread: Option<&Realisations>,
+    spread: Option<f64>,
 ) -> String {
     let persson = match persson.and_then(|p| p.thickness) {
         Some(d) => format!("{} µm ± {} µm", um(d.value), sig(d.err * 1e6, 2)),
@@ -417,7 +418,7 @@ fn min_thickness_line(
         Some(d) => {
             let bracket = m.search.thickness.map_or(f64::NAN, |b| b.err);
             let spread = spread
-                .map(|r| format!(", spread ± {} µm", sig(r.min_thickness_spread * 1e6, 2)))
+                .map(|s| format!(", spread ± {} µm", sig(s * 1e6, 2)))
                 .unwrap_or_default();
             format!(
                 "{} µm ± {} µm (bracket ± {} µm, grid ± {} µm{spread}; set by {})",
@@ -429,12 +430,12 @@ fn min_thickness_line(
             )
         }
     };
-    format!("minimum thickness: Persson {persson}; exact {exact}")
+    format!("{what}: Persson {persson}; exact {exact}")
 }
 
 /// One exact check as JSON: name, value (with `_err`) and its unit, limit, utilisation,
 /// margin, pass, and whether its ε-level is resolved by the map.
-fn exact_check_json(c: &ExactCheck) -> Value {
+pub(super) fn exact_check_json(c: &ExactCheck) -> Value {
     let unit = if c.kind == CheckKind::MinThickness {
         "m"
     } else {

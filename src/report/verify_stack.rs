@@ -15,12 +15,15 @@
 //! `persson_` beside it, then `bond_strength_pa`, `sigma_max_pa`, `tau_max_pa`, the field
 //! statistics and `peaks_resolved`), the checks with `at`, the solver and the exact verdict.
 
-use super::verify::{solver_json, stats_json};
+use super::verify::{exact_check_json, min_thickness_line, solver_json, stats_json};
 use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
 use crate::bem::{BemSolution, InterfaceFields, Surface};
+use crate::check::CheckKind;
 use crate::check::stack::StackOutcome;
 use crate::error::Error;
+use crate::exact::min_thickness::ExactMinThickness;
 use crate::layer::stack::Stack;
+use crate::pipeline::StackExact;
 use crate::prec::Estimate;
 use crate::verify::Row;
 use crate::verify_stack::{StackComparison, StackVerification};
@@ -349,46 +352,105 @@ fn show(key: &str, x: f64) -> String {
     }
 }
 
-fn add_rows(t: &mut comfy_table::Table, at: &str, rows: Vec<CheckRow>) {
+/// The spread over the realisations of a number by its report key.
+type Spread<'a> = dyn Fn(&str) -> Option<f64> + 'a;
+
+/// The rows of one place (`top` or an interface), with the spread over the realisations
+/// (`spread(key)`) when there are realisations.
+fn add_rows(
+    t: &mut comfy_table::Table,
+    at: &str,
+    rows: Vec<CheckRow>,
+    spread: Option<&Spread<'_>>,
+) {
     for (name, key, p, e) in rows {
         let ratio = p
             .filter(|p| p.value != 0.0)
             .map_or("-".into(), |p| sig(e.value / p.value, 3));
-        t.add_row(vec![
+        let mut row = vec![
             at.to_string(),
             name.to_string(),
             p.map_or("-".into(), |p| show(key, p.value)),
             show(key, e.value),
             show(key, e.err),
-            ratio,
-        ]);
+        ];
+        if let Some(spread) = spread {
+            row.push(spread(key).map_or("-".into(), |s| show(key, s)));
+        }
+        row.push(ratio);
+        t.add_row(row);
     }
 }
 
-/// The `check --verify` section of a stack as tables (MPa, 4 significant digits).
-pub fn check_table(map: &Path, o: &StackOutcome, v: &StackVerification) -> String {
-    let mut out = wrap(&format!(
-        "exact check on the height map {} ({} x {} pixels, q_L z = {} at the bottom interface; \
-         boundary elements with the stack's kernels, {} iterations; error = difference to the \
-         same map at half resolution)",
-        map.display(),
-        v.nx,
-        v.ny,
-        sig(v.q_low_z, 3),
-        v.convergence.iterations
-    ));
+/// The heading of the `check --verify` section: the map, or the realisations and their grid.
+fn heading(x: &StackExact) -> String {
+    let v = &x.verification;
+    let solves = x
+        .min_thickness
+        .as_ref()
+        .map(|m| format!(", {} more for the minimum thickness", m.solves))
+        .unwrap_or_default();
+    match &x.realisations {
+        None => format!(
+            "exact check on the height map {} ({} x {} pixels, q_L z = {} at the bottom \
+             interface; boundary elements with the stack's kernels, {} iterations{solves}; error \
+             = difference to the same map at half resolution)",
+            x.map.display(),
+            v.nx,
+            v.ny,
+            sig(v.q_low_z, 3),
+            v.convergence.iterations
+        ),
+        Some(r) => format!(
+            "exact check on {} random-phase realisations of the scene's spectrum ({}; seeds \
+             {}..{}; {} x {} pixels of {} µm, q_L z = {} at the bottom interface, modes up to {} \
+             1/m; boundary elements with the stack's kernels{solves}): each exact number is the \
+             mean over the realisations, spread = standard error of that mean, error = mean \
+             difference to the same surfaces at half resolution; the grid leaves out {} of the \
+             slope variance",
+            r.count,
+            x.map.display(),
+            r.seeds[0],
+            r.seeds[r.seeds.len() - 1],
+            v.nx,
+            v.ny,
+            um(r.grid.dx),
+            sig(v.q_low_z, 3),
+            sig(r.grid.q_nyquist, 4),
+            sig(r.grid.unresolved_slope_share, 3)
+        ),
+    }
+}
+
+/// The `check --verify` section of a stack as tables (MPa, µm, 4 significant digits): Persson
+/// beside the exact numbers at the top and at every interface, the exact checks, both minimum
+/// thicknesses of the layer `criteria.thickness_of` and the exact verdict.
+pub fn check_table(x: &StackExact, o: &StackOutcome) -> String {
+    let v = &x.verification;
+    let r = x.realisations.as_ref();
+    let mut out = wrap(&heading(x));
     out.push('\n');
-    let mut t = table(&[
-        "at",
-        "quantity",
-        "Persson",
-        "exact (BEM)",
-        "error estimate",
-        "exact/Persson",
-    ]);
-    add_rows(&mut t, "top", top_rows(o, v));
+    let mut head = vec!["at", "quantity", "Persson", "exact (BEM)", "error estimate"];
+    if r.is_some() {
+        head.push("spread");
+    }
+    head.push("exact/Persson");
+    let mut t = table(&head);
+    let top = r.map(|r| move |key: &str| r.top_spread(key));
+    add_rows(
+        &mut t,
+        "top",
+        top_rows(o, v),
+        top.as_ref().map(|f| f as &Spread<'_>),
+    );
     for (k, i) in v.interfaces.iter().enumerate() {
-        add_rows(&mut t, &i.name, interface_rows(o, v, k));
+        let at = r.map(|r| move |key: &str| r.interface_spread(k, key));
+        add_rows(
+            &mut t,
+            &i.name,
+            interface_rows(o, v, k),
+            at.as_ref().map(|f| f as &Spread<'_>),
+        );
     }
     out += &format!("{t}\n");
     let mut c = table(&[
@@ -406,25 +468,65 @@ pub fn check_table(map: &Path, o: &StackOutcome, v: &StackVerification) -> Strin
         if !ch.resolved {
             result += " (map maximum)";
         }
+        let (value, limit) = if ch.kind == CheckKind::MinThickness {
+            let limit = if ch.limit.is_infinite() {
+                "none passes".into()
+            } else {
+                format!(">= {} µm", um(ch.limit))
+            };
+            (format!("{} µm", um(ch.value.value)), limit)
+        } else {
+            (
+                show("_pa", ch.value.value),
+                format!("<= {}", show("_pa", ch.limit)),
+            )
+        };
         c.add_row(vec![
             ch.kind.name().to_string(),
             sc.at.clone(),
-            show("_pa", ch.value.value),
-            format!("<= {}", show("_pa", ch.limit)),
+            value,
+            limit,
             utilisation_cell(Some(ch.margin)),
             margin_cell(Some(ch.margin)),
             result,
         ]);
     }
     out += &format!("{c}\n");
+    if let Some(m) = &x.min_thickness {
+        let what = format!(
+            "minimum thickness of layer '{}' (the others fixed)",
+            thickness_of(o)
+        );
+        out += &wrap(&min_thickness_line(
+            &what,
+            o.min_thickness.as_ref(),
+            m,
+            r.map(|r| r.min_thickness_spread),
+        ));
+        out.push('\n');
+    }
+    let min_by = if x.min_thickness.is_some() {
+        "the exact minimum thickness included"
+    } else {
+        "min-thickness is judged by Persson's theory only"
+    };
     out += &wrap(&format!(
         "exact verdict: {}; with --verify the stack passes only if both Persson's and the exact \
-         checks pass (min-thickness is judged by Persson's theory only; map maximum: epsilon < \
-         1/pixels, the level is the field's maximum)",
+         checks pass ({min_by}; map maximum: epsilon < 1/pixels, the level is the field's \
+         maximum)",
         if v.pass { "PASS" } else { "FAIL" }
     ));
     out.push('\n');
     out
+}
+
+/// The name of the layer whose minimum thickness the check searched (the layer its
+/// min-thickness check is at).
+fn thickness_of(o: &StackOutcome) -> &str {
+    o.checks
+        .iter()
+        .find(|c| c.result.kind == CheckKind::MinThickness)
+        .map_or("", |c| c.at.as_str())
 }
 
 fn put_rows(m: &mut Map<String, Value>, rows: Vec<CheckRow>) {
@@ -435,10 +537,25 @@ fn put_rows(m: &mut Map<String, Value>, rows: Vec<CheckRow>) {
     }
 }
 
+/// The exact checks with where each applies.
+fn checks_json(v: &StackVerification) -> Value {
+    let checks: Vec<Value> = v
+        .checks
+        .iter()
+        .map(|sc| {
+            let mut c = exact_check_json(&sc.check);
+            c["at"] = json!(sc.at);
+            c
+        })
+        .collect();
+    Value::Array(checks)
+}
+
 /// The `check --verify` section of a stack as a JSON value (module docs).
-pub fn check_json(map: &Path, o: &StackOutcome, v: &StackVerification) -> Value {
+pub fn check_json(x: &StackExact, o: &StackOutcome) -> Value {
+    let v = &x.verification;
     let mut m = Map::new();
-    m.insert("map".into(), json!(map.display().to_string()));
+    m.insert("map".into(), json!(x.map.display().to_string()));
     m.insert("nx".into(), json!(v.nx));
     m.insert("ny".into(), json!(v.ny));
     m.insert("q_low_d".into(), json!(v.q_low_z));
@@ -462,24 +579,108 @@ pub fn check_json(map: &Path, o: &StackOutcome, v: &StackVerification) -> Value 
         })
         .collect();
     m.insert("interfaces".into(), Value::Array(interfaces));
-    let checks: Vec<Value> = v
-        .checks
-        .iter()
-        .map(|sc| {
-            let c = &sc.check;
-            json!({
-                "name": c.kind.name(), "at": sc.at, "value": c.value.value,
-                "value_err": c.value.err, "unit": "Pa", "limit": c.limit,
-                "utilisation": 1.0 - c.margin, "margin": c.margin, "pass": c.pass,
-                "resolved": c.resolved,
-            })
-        })
-        .collect();
-    m.insert("checks".into(), Value::Array(checks));
+    m.insert("checks".into(), checks_json(v));
     m.insert("solver".into(), solver_json(&v.convergence, v.seconds));
     m.insert(
         "verdict".into(),
         json!(if v.pass { "pass" } else { "fail" }),
     );
+    Value::Object(m)
+}
+
+/// The exact numbers of `rows` with their errors, their spread over the realisations
+/// (`_spread`, null on a map) and their ratio to Persson's (`_ratio`).
+fn put_exact_rows(
+    m: &mut Map<String, Value>,
+    rows: Vec<CheckRow>,
+    spread: impl Fn(&str) -> Option<f64>,
+) {
+    for (_, key, p, e) in rows {
+        m.insert(key.into(), json!(e.value));
+        m.insert(format!("{key}_err"), json!(e.err));
+        m.insert(format!("{key}_spread"), json!(spread(key)));
+        m.insert(
+            format!("{key}_ratio"),
+            json!(p.filter(|p| p.value != 0.0).map(|p| e.value / p.value)),
+        );
+    }
+}
+
+/// The exact result of a stack as a JSON value (`exact`, the film's keys of
+/// [`super::verify::exact_json`] for the top surface and the contact): its verdict, the surface
+/// (the map or the realisations), the exact d_min of the layer `thickness_of` with its error
+/// (bracket plus grid, each also apart) beside Persson's, A/A0, then `interfaces` (top first,
+/// each with `name`, `depth_m` and the stress levels with `_err`, `_spread` and `_ratio`), and
+/// the exact checks with `at`.
+pub fn exact_json(x: &StackExact, o: &StackOutcome) -> Value {
+    let v = &x.verification;
+    let r = x.realisations.as_ref();
+    let mut m = Map::new();
+    m.insert(
+        "verdict".into(),
+        json!(if v.pass { "pass" } else { "fail" }),
+    );
+    m.insert(
+        "surface".into(),
+        json!(if r.is_some() { "realisations" } else { "map" }),
+    );
+    m.insert("source".into(), json!(x.map.display().to_string()));
+    m.insert("realisations".into(), json!(r.map_or(1, |r| r.count)));
+    m.insert("nx".into(), json!(v.nx));
+    m.insert("ny".into(), json!(v.ny));
+    m.insert(
+        "unresolved_slope_share".into(),
+        json!(r.map(|r| r.grid.unresolved_slope_share)),
+    );
+    let min = x.min_thickness.as_ref();
+    let d = min.and_then(ExactMinThickness::thickness);
+    m.insert("thickness_of".into(), json!(thickness_of(o)));
+    m.insert("min_thickness_m".into(), json!(d.map(|d| d.value)));
+    m.insert("min_thickness_m_err".into(), json!(d.map(|d| d.err)));
+    m.insert(
+        "min_thickness_m_bracket_err".into(),
+        json!(min.and_then(|m| m.search.thickness).map(|d| d.err)),
+    );
+    m.insert(
+        "min_thickness_m_grid_err".into(),
+        json!(min.map(|m| m.grid_err)),
+    );
+    m.insert(
+        "min_thickness_m_spread".into(),
+        json!(r.map(|r| r.min_thickness_spread).filter(|_| min.is_some())),
+    );
+    let persson_d = o
+        .min_thickness
+        .as_ref()
+        .and_then(|p| p.thickness)
+        .map(|p| p.value);
+    m.insert(
+        "min_thickness_m_ratio".into(),
+        json!(d.zip(persson_d).map(|(d, p)| d.value / p)),
+    );
+    m.insert(
+        "min_thickness_governing_check".into(),
+        json!(min.and_then(|m| m.search.governing).map(CheckKind::name)),
+    );
+    m.insert("min_thickness_solves".into(), json!(min.map(|m| m.solves)));
+    put_exact_rows(&mut m, top_rows(o, v), |key| {
+        r.and_then(|r| r.top_spread(key))
+    });
+    let interfaces: Vec<Value> = v
+        .interfaces
+        .iter()
+        .enumerate()
+        .map(|(k, i)| {
+            let mut e = Map::new();
+            e.insert("name".into(), json!(i.name));
+            e.insert("depth_m".into(), json!(i.depth));
+            put_exact_rows(&mut e, interface_rows(o, v, k), |key| {
+                r.and_then(|r| r.interface_spread(k, key))
+            });
+            Value::Object(e)
+        })
+        .collect();
+    m.insert("interfaces".into(), Value::Array(interfaces));
+    m.insert("checks".into(), checks_json(v));
     Value::Object(m)
 }

@@ -1,0 +1,179 @@
+//! The robust section of `check --robust` on a layer stack ([`crate::check::stack_robust`]): the
+//! ranges with the governing corner (and those held at one end when the corners are capped),
+//! each check at every interface at its worst corner, the robust verdict beside the nominal one
+//! and the d_min range of the layer `criteria.thickness_of`, as a table and JSON (the film's
+//! `robust` object of `check.schema.json`, each check with `at`, each range with `held`).
+
+use super::check::{check_json, check_rows_of};
+use super::{modulus, mpa, table, um, wrap};
+use crate::check::stack::{StackDesign, StackOutcome};
+use crate::check::stack_robust::{MAX_VARIED, StackParam, StackRobust};
+use serde_json::{Map, Value, json};
+
+/// A property's value in the unit people read it in.
+fn show(p: StackParam, v: f64) -> String {
+    match p {
+        _ if p.is_ratio() => v.to_string(),
+        StackParam::YieldStrength | StackParam::BondStrength(_) => format!("{} MPa", mpa(v)),
+        _ => modulus(v),
+    }
+}
+
+/// `min` or `max`: which end of its range a corner takes.
+fn end(v: f64, min: f64) -> &'static str {
+    if v == min { "min" } else { "max" }
+}
+
+fn verdict(pass: bool) -> &'static str {
+    if pass { "PASS" } else { "FAIL" }
+}
+
+/// The nominal d_min (m), when min-thickness ran and a thickness passes.
+fn nominal_d_min(o: &StackOutcome) -> Option<f64> {
+    o.min_thickness
+        .as_ref()
+        .and_then(|m| m.thickness)
+        .map(|e| e.value)
+}
+
+fn d_min_text(v: Option<f64>) -> String {
+    v.map_or("none passes".into(), |d| format!("{} µm", um(d)))
+}
+
+/// Whether range `i` is held at one end.
+fn held(r: &StackRobust, i: usize) -> bool {
+    r.held.iter().any(|&(h, _)| h == i)
+}
+
+/// The robust section as tables and lines of text.
+pub fn table_text(r: &StackRobust, design: &StackDesign, o: &StackOutcome) -> String {
+    let mut out = wrap(&format!(
+        "Robust: the stack at the worst corner of its materials' ranges ({} corner{} of the \
+         elastic constants; strengths at their minima){}",
+        r.corners,
+        if r.corners == 1 { "" } else { "s" },
+        if r.held.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; more than {MAX_VARIED} elastic ranges: the {MAX_VARIED} that change the \
+                 utilisation most are varied, the other {} held at their worse end (screened one \
+                 at a time)",
+                r.held.len()
+            )
+        }
+    ));
+    out.push('\n');
+    if r.ranges.is_empty() {
+        out += "no property has a range of non-zero width: the robust verdict is the nominal one\n";
+    } else {
+        let mut t = table(&["property", "nominal", "range", "governing corner"]);
+        for (i, (p, s)) in r.ranges.iter().enumerate() {
+            let nominal = p.value(design).map_or("-".into(), |v| show(*p, v));
+            let corner = r.corner.get(i).map_or("-".into(), |&v| {
+                let how = if held(r, i) { ", held" } else { "" };
+                format!("{} ({}{how})", show(*p, v), end(v, s.min))
+            });
+            t.add_row(vec![
+                p.key(),
+                nominal,
+                format!("{} to {}", show(*p, s.min), show(*p, s.max)),
+                corner,
+            ]);
+        }
+        out += &format!("{t}\n");
+    }
+    let mut t = table(&[
+        "check",
+        "at",
+        "worst value",
+        "limit",
+        "utilisation",
+        "margin",
+        "result",
+    ]);
+    for (c, row) in r.checks.iter().zip(check_rows_of(
+        r.checks.iter().map(|c| &c.check.result),
+        None,
+    )) {
+        let mut row = row.to_vec();
+        row.insert(1, c.check.at.clone());
+        t.add_row(row);
+    }
+    out += &format!("{t}\n");
+    out += &format!(
+        "robust verdict: {} (nominal: {}){}\n",
+        verdict(r.pass),
+        verdict(o.pass),
+        r.governing
+            .as_ref()
+            .map(|(k, at)| format!(
+                "; governing check at its worst corner: {} at {at}",
+                k.name()
+            ))
+            .unwrap_or_default()
+    );
+    if let Some(m) = &r.min_thickness {
+        out += &format!(
+            "d_min over the corners: {} to {} (nominal {})\n",
+            d_min_text(m.min),
+            d_min_text(m.max),
+            d_min_text(nominal_d_min(o))
+        );
+    }
+    out
+}
+
+/// The corner as `{key: value}` (SI).
+fn corner_json(r: &StackRobust, corner: &[f64]) -> Map<String, Value> {
+    r.ranges
+        .iter()
+        .zip(corner)
+        .map(|((p, _), v)| (p.key(), json!(v)))
+        .collect()
+}
+
+/// The `robust` object of a stack.
+pub fn json_value(r: &StackRobust, design: &StackDesign, o: &StackOutcome) -> Value {
+    let ranges: Vec<Value> = r
+        .ranges
+        .iter()
+        .enumerate()
+        .map(|(i, (p, s))| {
+            json!({
+                "key": p.key(),
+                "unit": p.unit(),
+                "nominal": p.value(design),
+                "min": s.min,
+                "max": s.max,
+                "governing_corner": r.corner.get(i),
+                "held": held(r, i),
+            })
+        })
+        .collect();
+    let checks: Vec<Value> = r
+        .checks
+        .iter()
+        .map(|c| {
+            let mut m = check_json(&c.check.result);
+            m.insert("at".into(), json!(c.check.at));
+            m.insert("corner".into(), Value::Object(corner_json(r, &c.corner)));
+            Value::Object(m)
+        })
+        .collect();
+    json!({
+        "verdict": if r.pass { "pass" } else { "fail" },
+        "nominal_verdict": if o.pass { "pass" } else { "fail" },
+        "governing_check": r.governing.as_ref().map(|(k, _)| k.name()),
+        "governing_at": r.governing.as_ref().map(|(_, at)| at),
+        "governing_corner": corner_json(r, &r.corner),
+        "corners": r.corners,
+        "ranges": ranges,
+        "checks": checks,
+        "min_thickness_range_m": r.min_thickness.map(|m| json!({
+            "min": m.min,
+            "max": m.max,
+            "nominal": nominal_d_min(o),
+        })),
+    })
+}
