@@ -72,6 +72,10 @@
 //! value's magnitude is at least 1e−30. For x > ~745, e^{−x} underflows and the thick step
 //! returns the half-space: the interface stresses below are then below 1e−300.
 
+mod tangential;
+
+pub use tangential::InterfaceShear;
+
 use super::Elastic;
 use crate::error::Error;
 use serde::Serialize;
