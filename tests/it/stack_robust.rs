@@ -338,3 +338,106 @@ fn one_layer_stack_robust_is_the_films() {
     close(gm.min, wm.min, tol, "d_min range min");
     close(gm.max, wm.max, tol, "d_min range max");
 }
+
+/// A stack with more than `MAX_VARIED` elastic ranges (natural rubber on NBR on an epoxy primer
+/// on carbon steel: 8) varies the 6 that change the largest utilisation most over their 64
+/// corners and holds the other 2 at the end where that utilisation is larger (each range
+/// screened here at its two ends with the others nominal); every check at its worst corner is
+/// no better than nominally.
+#[test]
+fn a_deep_stack_holds_its_least_influential_ranges() {
+    use coatcheck::check::stack::StackChecker;
+    use coatcheck::check::stack_robust::MAX_VARIED;
+    let lib = Library::builtin().unwrap();
+    let m = |n: &str| lib.material(n).unwrap();
+    let (nr, nbr, primer, steel) = (
+        m("natural-rubber"),
+        m("nbr"),
+        m("epoxy-primer"),
+        m("carbon-steel"),
+    );
+    let layer = |name: &str, e, d| StackLayer {
+        name: name.into(),
+        material: e,
+        thickness: d,
+        bond_strength: 5e6,
+    };
+    let design = StackDesign {
+        layers: vec![
+            layer("skin", nr.elastic, 10e-6),
+            layer("lining", nbr.elastic, 10e-6),
+            layer("primer", primer.elastic, 5e-6),
+        ],
+        substrate: steel.elastic,
+        pressure: 2e6,
+        yield_strength: steel.yield_strength,
+        criteria: Criteria::default(),
+        thickness_of: 0,
+    };
+    let mut ranges = Vec::new();
+    for (k, mat) in [nr, nbr, primer].iter().enumerate() {
+        ranges.push((
+            StackParam::YoungsModulus(k),
+            mat.ranges.youngs_modulus.unwrap(),
+        ));
+        ranges.push((
+            StackParam::PoissonRatio(k),
+            mat.ranges.poisson_ratio.unwrap(),
+        ));
+    }
+    ranges.push((
+        StackParam::SubstrateYoungsModulus,
+        steel.ranges.youngs_modulus.unwrap(),
+    ));
+    ranges.push((
+        StackParam::SubstratePoissonRatio,
+        steel.ranges.poisson_ratio.unwrap(),
+    ));
+    let spectrum = Spectrum::self_affine(0.8, 1e4, 1e7, Some(5e4))
+        .unwrap()
+        .scaled_to_rms_slope(0.3)
+        .unwrap();
+    let settings = Settings::default();
+    let largest = |d: &StackDesign| {
+        let row = StackChecker::new(&spectrum, d.clone(), settings)
+            .unwrap()
+            .evaluate(d.layers[0].thickness)
+            .unwrap();
+        row.checks
+            .iter()
+            .map(|c| c.result.value.value / c.result.limit.unwrap())
+            .fold(0.0, f64::max)
+    };
+    let screened: Vec<(f64, f64)> = ranges
+        .iter()
+        .map(|&(p, s)| {
+            let at = |v: f64| {
+                let mut d = design.clone();
+                p.set(&mut d, v).unwrap();
+                largest(&d)
+            };
+            let (lo, hi) = (at(s.min), at(s.max));
+            ((hi - lo).abs(), if hi > lo { s.max } else { s.min })
+        })
+        .collect();
+    let r = stack_robust::judge_robust(&spectrum, &design, settings, ranges.clone()).unwrap();
+    assert_eq!(r.corners, 1 << MAX_VARIED);
+    assert_eq!(r.held.len(), ranges.len() - MAX_VARIED);
+    let varied_least = (0..ranges.len())
+        .filter(|i| !r.held.iter().any(|(h, _)| h == i))
+        .map(|i| screened[i].0)
+        .fold(f64::INFINITY, f64::min);
+    for &(i, v) in &r.held {
+        assert!(screened[i].0 <= varied_least, "held {i}: {:?}", screened);
+        assert_eq!(v, screened[i].1, "held {i} at its worse end");
+        assert_eq!(r.corner[i], v);
+    }
+    let nominal = StackChecker::new(&spectrum, design.clone(), settings)
+        .unwrap()
+        .run()
+        .unwrap();
+    for (w, n) in r.checks.iter().zip(&nominal.checks) {
+        assert_eq!((w.check.result.kind, &w.check.at), (n.result.kind, &n.at));
+        assert!(w.check.result.margin <= n.result.margin, "{w:?} {n:?}");
+    }
+}

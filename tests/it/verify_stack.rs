@@ -519,7 +519,8 @@ fn verify_two_layers_json_csv_and_fields() {
 }
 
 /// `check --verify` on a `[[layer]]` scene: the exact section follows `check.schema.json` with an
-/// entry per interface (Persson's beside it) and the checks at every interface; the table shows
+/// entry per interface (Persson's beside it) and the checks at every interface, the exact
+/// minimum thickness among them; the table shows
 /// both interfaces; the exit code is the combined verdict's.
 #[test]
 fn check_verify_on_a_stack_scene() {
@@ -552,7 +553,14 @@ fn check_verify_on_a_stack_scene() {
         .iter()
         .map(|c| c["at"].as_str().unwrap())
         .collect();
-    assert_eq!(at, ["rubber", "primer", "substrate"]);
+    // The exact minimum thickness of the layer thickness_of is the last check, and the `exact`
+    // object has it beside Persson's.
+    assert_eq!(at, ["rubber", "primer", "substrate", "rubber"]);
+    assert_eq!(v["checks"][3]["name"], "min-thickness");
+    let x = &j["exact"];
+    assert_eq!(x["thickness_of"], "rubber");
+    assert!(x["min_thickness_m"].as_f64().unwrap() > 0.0);
+    assert_eq!(x["interfaces"].as_array().unwrap().len(), 2);
     let pass = j["verdict"] == "pass" && v["verdict"] == "pass";
     assert_eq!(j["verdict_with_verify"], if pass { "pass" } else { "fail" });
     assert_eq!(o.status.code(), Some(if pass { 0 } else { 1 }));
