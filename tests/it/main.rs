@@ -39,6 +39,7 @@ mod sliding;
 mod stack;
 mod stack_outputs;
 mod stack_scene;
+mod stack_sliding;
 mod stack_tangential;
 mod tail;
 mod tangential;
