@@ -1,9 +1,10 @@
 //! `coatcheck response --layer E,nu,d [--layer …] --substrate E,nu --q …`: S(q) and, at every
-//! interface k (top first), f_k(q) and g_k(q) of a layer stack ([`coatcheck::layer::stack`]).
+//! interface k (top first), f_k(q) and g_k(q) of a layer stack ([`coatcheck::layer::stack`]),
+//! then at every interface the tangential-load kernels g_t,k, f_t,k, h_k.
 
 use super::response::{Format, ResponseArgs, elastic, flush, parse_values};
 use coatcheck::Error;
-use coatcheck::layer::stack::{Layer, STACK_RTOL, Stack, StackResponse};
+use coatcheck::layer::stack::{InterfaceShear, Layer, STACK_RTOL, Stack, StackResponse};
 use coatcheck::units::{Dim, parse_quantity};
 use comfy_table::{Table, presets::UTF8_FULL};
 
@@ -37,21 +38,39 @@ fn err(v: f64) -> f64 {
     STACK_RTOL * v.abs() + flush(v)
 }
 
-/// Column names: q, S, then f1, g1, f2, g2, ….
+/// The error estimates of g_t,k, f_t,k, h_k (absolute): as [`err`], with g_t,k's taken
+/// relative to max(|g_t,k|, h_k/100) (absolute near its zeros, the bound the tests verify).
+fn tangential_err(t: &InterfaceShear) -> [f64; 3] {
+    [
+        STACK_RTOL * t.g_t.abs().max(0.01 * t.h) + flush(t.g_t),
+        err(t.f_t),
+        err(t.h),
+    ]
+}
+
+/// Column names: q, S, then f1, g1, f2, g2, …, then g_t1, f_t1, h1, g_t2, ….
 fn columns(n: usize) -> Vec<String> {
     let mut c = vec!["q".to_string(), "S".to_string()];
     for k in 1..=n {
         c.push(format!("f{k}"));
         c.push(format!("g{k}"));
     }
+    for k in 1..=n {
+        c.extend([format!("g_t{k}"), format!("f_t{k}"), format!("h{k}")]);
+    }
     c
 }
 
-/// S, f1, g1, f2, g2, … of one row.
-fn values(r: &StackResponse) -> Vec<f64> {
-    std::iter::once(r.s)
+/// S, f1, g1, f2, g2, …, g_t1, f_t1, h1, … of one row, each with its error estimate.
+fn values(r: &StackResponse, t: &[InterfaceShear]) -> Vec<(f64, f64)> {
+    let normal = std::iter::once(r.s)
         .chain(r.interfaces.iter().flat_map(|&(f, g)| [f, g]))
-        .collect()
+        .map(|v| (v, err(v)));
+    let tangential = t.iter().flat_map(|t| {
+        let e = tangential_err(t);
+        [(t.g_t, e[0]), (t.f_t, e[1]), (t.h, e[2])]
+    });
+    normal.chain(tangential).collect()
 }
 
 pub fn run(args: &ResponseArgs) -> Result<i32, Error> {
@@ -65,9 +84,9 @@ pub fn run(args: &ResponseArgs) -> Result<i32, Error> {
         return Err(Error::invalid("--q", "missing", "--q Q1,Q2,… with --layer"));
     };
     let qs = parse_values("--q", q_text, Q_MAX, "a wavenumber from 0 to 1e15 1/m")?;
-    let rows: Vec<(f64, Vec<f64>)> = qs
+    let rows: Vec<(f64, Vec<(f64, f64)>)> = qs
         .iter()
-        .map(|&q| (q, values(&stack.response(q))))
+        .map(|&q| (q, values(&stack.response(q), &stack.tangential(q))))
         .collect();
     let names = columns(stack.layers().len());
     let text = match args.format {
@@ -78,7 +97,7 @@ pub fn run(args: &ResponseArgs) -> Result<i32, Error> {
             t.load_preset(UTF8_FULL).set_header(header);
             for (q, v) in &rows {
                 let cells = std::iter::once(format!("{q:.4e}"))
-                    .chain(v.iter().map(|x| format!("{x:.10e}")));
+                    .chain(v.iter().map(|(x, _)| format!("{x:.10e}")));
                 t.add_row(cells.collect::<Vec<_>>());
             }
             let depths: Vec<String> = stack
@@ -91,7 +110,8 @@ pub fn run(args: &ResponseArgs) -> Result<i32, Error> {
                 "{t}\ninterfaces (below layer k): {}\nerror estimate: relative {STACK_RTOL:e} \
                  for each of S, f_k, g_k where |value| >= 1e-30 (the bound verified against a \
                  120-digit solution for 1 to 10 layers, q·z 1e-8..1e4, neighbour modulus ratios \
-                 1e-8..1e8, nu 0..0.5)\n",
+                 1e-8..1e8, nu 0..0.5), and for g_t,k, f_t,k, h_k (for g_t,k near its zeros \
+                 absolute, {STACK_RTOL:e} h_k/100)\n",
                 depths.join(", ")
             )
         }
@@ -103,8 +123,8 @@ pub fn run(args: &ResponseArgs) -> Result<i32, Error> {
             text.push('\n');
             for (q, v) in &rows {
                 text += &format!("{q:e}");
-                for x in v {
-                    text += &format!(",{x:e},{:e}", err(*x));
+                for (x, e) in v {
+                    text += &format!(",{x:e},{e:e}");
                 }
                 text.push('\n');
             }
@@ -116,9 +136,9 @@ pub fn run(args: &ResponseArgs) -> Result<i32, Error> {
                 .map(|(q, v)| {
                     let mut row = serde_json::Map::new();
                     row.insert("q".into(), (*q).into());
-                    for (n, x) in names[1..].iter().zip(v) {
+                    for (n, (x, e)) in names[1..].iter().zip(v) {
                         row.insert(n.clone(), (*x).into());
-                        row.insert(format!("{n}_err"), err(*x).into());
+                        row.insert(format!("{n}_err"), (*e).into());
                     }
                     serde_json::Value::Object(row)
                 })

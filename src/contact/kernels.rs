@@ -23,7 +23,9 @@
 //! their undecayed forms.
 
 use crate::layer::stack::StackCache;
-use crate::layer::{Bilayer, KernelTable, Nodes, Squared, TangentialTable, undecayed_squares};
+use crate::layer::{
+    Bilayer, KernelTable, Nodes, Squared, TangentialTable, friction_squares, undecayed_squares,
+};
 use std::cell::RefCell;
 
 /// Above this q_L·d the interface kernels are scaled by e^{2 q_L d}: below it f², g² at q_L d
@@ -128,9 +130,9 @@ impl<'a> Kernels<'a> {
         }
     }
 
-    /// These kernels with the interface slots mixed by `mix` (sliding; one-layer films only:
-    /// stack kernels keep f_k², g_k²), the friction kernels from `tangential` where the
-    /// static ones come from a table.
+    /// These kernels with the interface slots mixed by `mix` (sliding), the friction kernels
+    /// from `tangential` where the static ones come from a table (a stack's from
+    /// [`crate::layer::stack::Stack::tangential`], with g_t,k − h_k formed as a difference).
     pub(super) fn mixed(self, mix: Mix, tangential: Option<&'a TangentialTable>) -> Self {
         Self {
             mix,
@@ -150,28 +152,22 @@ impl<'a> Kernels<'a> {
             }
             (Source::Table { table, d, .. }, _) => (table.layers(), d),
             (Source::Exact { layers, d }, _) => (layers, d),
-            (Source::Stack { .. }, _) => return [0.0; 3],
+            (Source::Stack { k, memo }, _) => {
+                let t = memo.borrow().stack().tangential(q)[k];
+                return friction_squares(t.f_t, t.h, t.g_t - t.h);
+            }
         };
         let x = q * d;
         let e = (-(x - self.shift)).exp();
         undecayed_squares(layers, x).map(|v| v * e * e)
     }
 
-    /// The film and thickness of one-layer kernels.
-    fn bilayer(&self) -> Option<(&'a Bilayer, f64)> {
-        match self.source {
-            Source::Table { table, d, .. } => Some((table.layers(), d)),
-            Source::Exact { layers, d } => Some((layers, d)),
-            Source::Stack { .. } => None,
-        }
-    }
-
     /// The interface slots `fg` (static f², g² at q, times e^{2s}) turned by the mix.
     #[inline]
     fn apply_mix(&self, q: f64, u: f64, fg: (f64, f64)) -> (f64, f64) {
-        match (self.mix, self.bilayer()) {
-            (Mix::Static, _) | (_, None) => fg,
-            (mix, Some(_)) => mix.apply(|| self.friction_squares(q, u), fg),
+        match self.mix {
+            Mix::Static => fg,
+            mix => mix.apply(|| self.friction_squares(q, u), fg),
         }
     }
 

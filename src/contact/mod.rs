@@ -33,6 +33,7 @@ mod kernels;
 mod probability;
 mod sliding;
 mod stack;
+mod stack_sliding;
 
 pub use distributions::{NormalStress, tau_exceedance, tau_pdf, tau_peak};
 pub use engine::{Engine, ROUNDING_FLOOR, panel_width, rounding_floor};

@@ -123,7 +123,7 @@ impl Engine {
 }
 
 /// √(τ²/2 + μ² F²) with the errors of τ and F propagated to first order.
-fn combine(tau: Estimate, mu2: f64, f: Estimate) -> Estimate {
+pub(super) fn combine(tau: Estimate, mu2: f64, f: Estimate) -> Estimate {
     let v = 0.5 * tau.value * tau.value + mu2 * f.value * f.value;
     let dv = tau.value * tau.err + 2.0 * mu2 * f.value * f.err;
     let s = v.sqrt();

@@ -17,7 +17,7 @@
 //! last bit the same values.
 
 use super::engine::At;
-use super::kernels::{Kernels, StackMemo};
+use super::kernels::{Kernels, Mix, StackMemo};
 use super::{Contact, Engine, Request};
 use crate::error::Error;
 use crate::layer::stack::{STACK_RTOL, Stack, StackCache};
@@ -52,6 +52,18 @@ impl Engine {
         p0: f64,
         request: Request,
     ) -> Result<StackContact, Error> {
+        self.evaluate_stack_mixed(stack, p0, request, Mix::Static)
+    }
+
+    /// [`Self::evaluate_stack`] with the interface slots mixed by `mix` (sliding,
+    /// [`super::stack_sliding`]).
+    pub(super) fn evaluate_stack_mixed(
+        &self,
+        stack: &Stack,
+        p0: f64,
+        request: Request,
+        mix: Mix,
+    ) -> Result<StackContact, Error> {
         if !(p0.is_finite() && p0 > 0.0) {
             return Err(Error::invalid(
                 "nominal pressure p0",
@@ -69,7 +81,7 @@ impl Engine {
         let mut cache = taken.unwrap_or_else(|| StackCache::new(stack.clone()));
         cache.serve(stack);
         let memo = RefCell::new(cache);
-        let result = self.evaluate_stack_with(&memo, p0, request);
+        let result = self.evaluate_stack_with(&memo, p0, request, mix);
         *self.stack_cache().lock().unwrap_or_else(|e| e.into_inner()) = Some(memo.into_inner());
         result
     }
@@ -80,6 +92,7 @@ impl Engine {
         memo: &StackMemo,
         p0: f64,
         request: Request,
+        mix: Mix,
     ) -> Result<StackContact, Error> {
         let stack = memo.borrow().stack().clone();
         let e_top = stack.layers()[0].material.e_star();
@@ -97,7 +110,7 @@ impl Engine {
                 p0,
                 kernel_rtol: STACK_RTOL,
             };
-            let kernels = Kernels::stack(k, memo);
+            let kernels = Kernels::stack(k, memo).mixed(mix, None);
             let c = self.refine(&kernels, at, req)?;
             interfaces.push(InterfaceContact {
                 depth,

@@ -107,7 +107,7 @@ mod table;
 pub mod tangential;
 mod tangential_table;
 pub use table::{KernelTable, Nodes, Squared, X_FAR};
-pub use tangential_table::{TangentialTable, undecayed_squares};
+pub use tangential_table::{TangentialTable, friction_squares, undecayed_squares};
 
 /// 1/(2k+3)! for k = 0..14: Taylor coefficients of (sinh y − y)/y³ in y².
 const SINH_COEF: [f64; 15] = {

@@ -127,7 +127,9 @@ fn bad_input_exits_2_with_a_message() {
 
 /// `--layer`: two layers of one material on a half-space of it (a homogeneous solid) give the
 /// closed forms of notes.md, S = 1, f_k = (1 + q z_k)e^{−q z_k}, g_k = q z_k e^{−q z_k}, in the
-/// columns q, S, f1, g1, f2, g2 (each followed by its error, STACK_RTOL of the value); and one
+/// columns q, S, f1, g1, f2, g2 (each followed by its error, STACK_RTOL of the value), and
+/// g_t = (1 − x)e^{−x}, f_t = x e^{−x}, h = e^{−x} in g_t1, f_t1, h1, g_t2, … (STACK_RTOL of the
+/// value, of h/100 for g_t near its zero at x = 1); and one
 /// layer equals the `--film` form at q·d = q d (within the two kernels' error bounds).
 #[test]
 fn stack_columns_and_limits() {
@@ -148,7 +150,10 @@ fn stack_columns_and_limits() {
     let mut lines = out.lines();
     assert_eq!(
         lines.next(),
-        Some("q,S,S_err,f1,f1_err,g1,g1_err,f2,f2_err,g2,g2_err")
+        Some(
+            "q,S,S_err,f1,f1_err,g1,g1_err,f2,f2_err,g2,g2_err,g_t1,g_t1_err,f_t1,f_t1_err,h1,\
+             h1_err,g_t2,g_t2_err,f_t2,f_t2_err,h2,h2_err"
+        )
     );
     let rtol = coatcheck::layer::stack::STACK_RTOL;
     for line in lines {
@@ -158,6 +163,29 @@ fn stack_columns_and_limits() {
         for z in [10e-6, 30e-6] {
             let x: f64 = q * z;
             want.extend([(1.0 + x) * (-x).exp(), x * (-x).exp()]);
+        }
+        // g_t = (1 − x)e^{−x}, f_t = x e^{−x}, h = e^{−x} (notes.md, "Sliding friction"); g_t's
+        // error relative to max(|g_t|, h/100).
+        for (k, z) in [10e-6, 30e-6].into_iter().enumerate() {
+            let x: f64 = q * z;
+            let e = (-x).exp();
+            for (j, (w, floor)) in [((1.0 - x) * e, 0.01 * e), (x * e, 0.0), (e, 0.0)]
+                .into_iter()
+                .enumerate()
+            {
+                let (v, err) = (row[11 + 6 * k + 2 * j], row[12 + 6 * k + 2 * j]);
+                assert!(
+                    (v - w).abs() <= 1e-13 * w.abs().max(floor),
+                    "tangential column {j} of interface {k} at q = {q}: {v} vs {w}"
+                );
+                let h = row[15 + 6 * k];
+                let bound = if j == 0 {
+                    v.abs().max(0.01 * h)
+                } else {
+                    v.abs()
+                };
+                assert_eq!(err, rtol * bound, "{line}");
+            }
         }
         for (k, w) in want.iter().enumerate() {
             let (v, e) = (row[1 + 2 * k], row[2 + 2 * k]);

@@ -41,6 +41,7 @@ mod stack_exact;
 mod stack_outputs;
 mod stack_robust;
 mod stack_scene;
+mod stack_sliding;
 mod stack_tangential;
 mod tail;
 mod tangential;
