@@ -44,6 +44,8 @@ pub mod stack;
 pub mod stack_levers;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_sliding;
 
 use crate::contact::{Contact, Request};
 use crate::layer::Bilayer;
