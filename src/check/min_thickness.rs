@@ -77,27 +77,32 @@
 //! Tested, not proven (`check::tests_sliding`, over q·d 1e-8 … 1e4 at 100 points per decade,
 //! substrate/film modulus ratios 1e-8 … 1e8 every decade, ν 0, 0.25, 0.5 on both sides): every
 //! step no longer than a widened step sees at one end at least the step's level of the largest
-//! value inside, for |g| (to q·d = 700; worst 0.32 and 0.59), for √k_x (0.49 and 0.70: it
-//! is not monotone, g_t + h changes sign for some pairs) and for f_t (0.55 and 0.74); beyond
+//! value inside, for |g| (to q·d = 700; worst 0.32 and 0.59), for √k_x (0.49 and 0.70; it
+//! is not monotone) and for f_t (0.55 and 0.74); beyond
 //! q·d = 10 k_x and f_t only fall (step 1); |f| only
 //! falls ([`crate::layer`]'s test, as for the static search). ρ(ε) is attained at m = 0, where
 //! it is √(−2 ln ε)/k_ε ([`crate::tail::anisotropy_spread`]: 1.075 at ε = 1e-6, 1.178 at 1e-2,
 //! 1.30 at 0.1; m from 1e-3 to 1e3, ε from 1e-300 to 0.49). τ* is nondecreasing in sx at any
-//! sy (step 1; m 0 … 100, sx/sy 1e-2 … 1e2). The search's one-step estimate
-//! ([`crate::tail::ShearVector::peak_from`]) from any level L ≥ τ* lands at most 1.5e-7
-//! below τ* (φ is not convex everywhere above τ*: m = 3, sx = 0.01, sy = 1, ε = 1e-300), so the
-//! scan's utilisations under-state a step end's by less than [`ESTIMATE_SLACK`], which the
-//! lowered thresholds leave room for. The normal-stress peak satisfies
+//! sy (step 1; m 0 … 100, sx/sy 1e-2 … 1e2). The normal-stress peak satisfies
 //! peak(p0, λσ) ≥ λ peak(p0, σ) (p0/σ 1e-3 … 1e3, ε 1e-12 … 0.3).
 //!
 //! So a failing point inside a widened step puts one end above (c/√2)/ρ(ε), and the search
-//! lowers each widened step's threshold to (1 − 1e-3)·level/(√2 ρ(ε)) where that is below it
+//! lowers each widened step's threshold to level/(√2 ρ(ε)) where that is below it
 //! ([`search_min_thickness_spread`]): for ε ≤ 0.0101 (ρ ≤ 1.1785) the thresholds are unchanged;
 //! above it they fall (0.135 and 0.27 at ε = 0.1), where the old ones could let a band through.
 //! Without friction (either rule) the shear peak is proportional to τ_rms and ρ = 1. The
 //! substrate-yield value under sliding goes through σ_rms² = Σ w_q (f² + μ² f_t²/2): |f| only
 //! falls and f_t has the property above, so one end has σ_i ≥ (c/√2)σ* and its peak at least
 //! (c/√2) of the failing one, without ρ.
+//!
+//! Open: the search judges a step end by [`crate::tail::ShearVector::peak_from`], one Newton
+//! step in φ = √(−2 ln P) from min(limit, τ_hi), not by τ* itself. Its pass/fail is exact, but φ
+//! is not convex everywhere above τ*, and the step can land below τ*: by up to 0.15 of τ*
+//! (0.076 at ε = 1e-6, 0.078 at 1e-300, 0.15 at 0.45; test
+//! `one_step_peak_estimates_can_under_state_the_peak`). An end
+//! whose estimate is under-stated that much could take a widened step the argument above does
+//! not cover; closing it needs the estimate bounded from below (a second step where an end
+//! lies within that factor of its threshold, or the spread divided by 1 − 0.15).
 //!
 //! Each evaluation during the search requests only what the enabled checks need (bond-shear:
 //! τ_rms; substrate-yield: A/A0 and σ_rms at the interface), reusing one [`crate::contact::Engine`] per spectrum.
@@ -285,16 +290,10 @@ fn scan_step(above: Option<Sample>, cur: Sample, h: f64, spread: f64) -> (f64, f
 
 /// The utilisation a widened step's ends must stay below when the peak may fall by `spread`
 /// more than the rms (module docs, "Under sliding"): `w.below`, lowered to
-/// (1 − [`ESTIMATE_SLACK`])·w.level/(√2·spread) where that is smaller.
+/// w.level/(√2·spread) where that is smaller.
 pub(super) fn wide_threshold(w: &WideStep, spread: f64) -> f64 {
-    w.below
-        .min((1.0 - ESTIMATE_SLACK) * w.level / (std::f64::consts::SQRT_2 * spread))
+    w.below.min(w.level / (std::f64::consts::SQRT_2 * spread))
 }
-
-/// How far below the peak the search's one-step estimate of a step end's vector peak may land
-/// (relative; measured at most 1.5e−7, test
-/// `vector_peak_rises_with_the_x_rms_and_one_step_estimates_stay_near_it`).
-pub const ESTIMATE_SLACK: f64 = 1e-3;
 
 /// The narrow-band guard (module docs, step 3) at a sampled local maximum `mid` between the
 /// samples `lo` and `hi` (lo.x < mid.x < hi.x): successive parabolic interpolation for the
