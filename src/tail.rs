@@ -247,6 +247,16 @@ impl ShearVector {
     }
 }
 
+/// The largest ratio, over the mean m ≥ 0, of the peak at exceedance ε (0 < ε < ½) of
+/// (m + X, Y) with equal rms to the peak with Y = 0: √(−2 ln ε)/k_ε, its value at m = 0 (the
+/// Rayleigh level over the half-normal one, k_ε = √2 erfc⁻¹(ε)); the ratio falls towards 1 as m
+/// grows (test `isotropic_peak_exceeds_the_folded_one_by_at_most_the_spread`). With sy ≤ sx the
+/// peak lies between the two, so it is at most this factor above the folded normal's of sx
+/// alone: what the minimum-thickness search allows for under sliding.
+pub fn anisotropy_spread(epsilon: f64) -> f64 {
+    (-2.0 * epsilon.ln()).sqrt() / crate::contact::tau_peak(1.0, epsilon)
+}
+
 /// The Newton step from x towards φ(R) = φ_ε in φ = √(−2 ln P), φ' = −(d ln P/dR)/φ; `None`
 /// where φ or the slope is 0 (P = 1 to rounding).
 fn phi_step(at: LnExceedance, x: f64, phi_eps: f64) -> Option<f64> {

@@ -4,6 +4,7 @@
 
 use super::basis::{Basis, Wording, check_warnings, finite_guard, governing, min_thickness_check};
 use super::criteria::{limit, upper_check, yield_governing};
+use super::min_thickness::search_min_thickness_spread;
 use super::*;
 use crate::contact::{self, Contact, Engine, NormalStress, Request, SlidingShear};
 use crate::error::Error;
@@ -235,16 +236,27 @@ impl Checker {
 
     /// The smallest thickness above which every enabled stress check passes (module docs).
     pub fn min_thickness(&self) -> Result<MinThickness, Error> {
-        self.basis
-            .min_thickness(|d| self.utilisation(d, Peak::FromLimit))
+        self.search(Peak::FromLimit)
     }
 
     /// [`Self::min_thickness`] with the vector rule's peak solved at every step: the reference
     /// the search's one-step estimates are tested against.
     #[cfg(test)]
     pub(super) fn min_thickness_solving_peaks(&self) -> Result<MinThickness, Error> {
-        self.basis
-            .min_thickness(|d| self.utilisation(d, Peak::Solved))
+        self.search(Peak::Solved)
+    }
+
+    /// The minimum-thickness search with the peaks found as `how` says; under friction the
+    /// widened steps allow for the vector peak's spread ([`crate::tail::anisotropy_spread`];
+    /// [`super::min_thickness`], "Under sliding").
+    fn search(&self, how: Peak) -> Result<MinThickness, Error> {
+        let (lo, hi) = self.basis.scan_range();
+        let spread = if self.design.friction > 0.0 {
+            crate::tail::anisotropy_spread(self.design.criteria.epsilon)
+        } else {
+            1.0
+        };
+        search_min_thickness_spread(lo, hi, spread, |d| self.utilisation(d, how))
     }
 
     /// The full check at the design's thickness: all quantities, the enabled checks, d_min.

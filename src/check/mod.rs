@@ -45,6 +45,8 @@ pub mod stack_levers;
 pub mod stack_robust;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_sliding;
 
 use crate::contact::{Contact, Request};
 use crate::layer::Bilayer;

@@ -262,9 +262,25 @@ impl<'a> Kernels<'a> {
                 if self.mix != Mix::Friction {
                     table.interface_many(Nodes { q, u, d, ln_d }, f2, g2);
                 }
-                if self.mix != Mix::Static {
-                    for (((fo, go), &q), &u) in f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u) {
-                        (*fo, *go) = self.apply_mix(q, u, (*fo, *go));
+                let nodes = f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u);
+                match (self.mix, self.tangential) {
+                    (Mix::Static, _) => {}
+                    // Only the squares the mix uses, as `Mix::apply` combines them.
+                    (Mix::Sliding { mu2 }, Some(t)) => {
+                        for (((fo, _), &q), &u) in nodes {
+                            *fo += 0.5 * mu2 * t.square(0, q * d, u + ln_d);
+                        }
+                    }
+                    (Mix::Friction, Some(t)) => {
+                        for (((fo, go), &q), &u) in nodes {
+                            let (x, y) = (q * d, u + ln_d);
+                            (*fo, *go) = (t.square(1, x, y), t.square(2, x, y));
+                        }
+                    }
+                    (_, None) => {
+                        for (((fo, go), &q), &u) in nodes {
+                            (*fo, *go) = self.apply_mix(q, u, (*fo, *go));
+                        }
                     }
                 }
             }
