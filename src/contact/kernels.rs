@@ -2,8 +2,7 @@
 //! thickness (eqs. B8–B12 take them at q·d): from the pair's [`KernelTable`] (checked against
 //! the exact forms to [`crate::prec::TABLE_RTOL`]), or the exact forms where no table resolves
 //! them; or a layer stack's S⁻² and one interface's f_k², g_k² (`layer::stack`), exact at every
-//! node but in batches of many nodes within a short range of ln q, interpolated there
-//! (`layer::stack_batch`, within 5e-12). The batch forms (`k_many`, `interface_many`) evaluate all nodes of a range at once.
+//! node. The batch forms (`k_many`, `interface_many`) evaluate all nodes of a range at once.
 //!
 //! Thick films: f and g fall like e^{−qd}, so f² and g² leave the f64 range from q·d ≈ 355
 //! while the interface stresses (∝ f(q_L d)) stay representable up to q_L d ≈ 745. Where
@@ -252,8 +251,7 @@ impl<'a> Kernels<'a> {
     pub(super) fn k_many(&self, q: &[f64], u: &[f64], out: &mut [f64]) {
         match self.source {
             Source::Table { table, d, ln_d } => table.k_many(Nodes { q, u, d, ln_d }, out),
-            Source::Stack { memo, .. } => memo.borrow_mut().k_many(q, u, out),
-            Source::Exact { .. } => {
+            Source::Exact { .. } | Source::Stack { .. } => {
                 for ((o, &q), &u) in out.iter_mut().zip(q).zip(u) {
                     *o = self.k(q, u);
                 }
@@ -273,9 +271,6 @@ impl<'a> Kernels<'a> {
                         (*fo, *go) = self.apply_mix(q, u, (*fo, *go));
                     }
                 }
-            }
-            Source::Stack { k, memo } if self.shift == 0.0 && self.mix == Mix::Static => {
-                memo.borrow_mut().interface_many(k, q, u, f2, g2);
             }
             _ => {
                 for (((fo, go), &q), &u) in f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u) {

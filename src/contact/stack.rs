@@ -14,10 +14,7 @@
 //! every f_k, g_k) and kept for the evaluation, in the engine's [`StackCache`]: between the
 //! evaluations of a minimum-thickness search, where one layer changes, the recursion through
 //! the layers below it is kept per node (the nodes are the same at every thickness), to the
-//! last bit the same values. A batch of many nodes within a short range of ln q (the graded
-//! region near q_L) takes the kernels from interpolants of their logarithms instead
-//! ([`crate::layer::stack_batch`], within its `BATCH_RTOL` = 5e-12 of the recursion, far
-//! inside [`STACK_RTOL`]), kept for every interface of the evaluation.
+//! last bit the same values.
 
 use super::engine::At;
 use super::kernels::{Kernels, StackMemo};

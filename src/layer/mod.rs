@@ -103,7 +103,6 @@ const QD_BULK: f64 = 700.0;
 const QD_ZERO: f64 = 1490.0;
 
 pub mod stack;
-pub mod stack_batch;
 mod table;
 pub mod tangential;
 mod tangential_table;

@@ -542,9 +542,7 @@ struct Node {
 /// of it) is computed once per wavenumber and kept; each stack's own part (the layers from the
 /// top down to the varied one, and the downward pass) is computed once per wavenumber and kept
 /// until the next stack. The same operations as [`Stack::response_into`] in the same order:
-/// the values are the same to the last bit. The batch forms ([`StackCache::k_many`],
-/// [`StackCache::interface_many`]) interpolate where the nodes qualify
-/// ([`super::stack_batch`]).
+/// the values are the same to the last bit.
 ///
 /// The base follows the stacks served ([`StackCache::serve`]): a stack that differs from the
 /// last one below the varied layer, or in the number of layers or the substrate, starts a new
@@ -568,25 +566,6 @@ pub struct StackCache {
     interfaces: Vec<(f64, f64)>,
     /// The steps of the layers above the base at the node being evaluated.
     scratch: Vec<Step>,
-    /// The last [`BATCHES`] batches of nodes asked for that qualify for interpolation
-    /// ([`super::stack_batch`]), and the one to replace next.
-    batches: Vec<Batch>,
-    next_batch: usize,
-}
-
-/// How many batches of nodes a [`StackCache`] keeps: an evaluation asks for the graded
-/// region's nodes and for the first nodes of each interface's integrals.
-const BATCHES: usize = 4;
-
-/// The kernels at one batch of nodes: which stack (generation) and nodes (the first and last
-/// wavenumbers' bits, their number) they are for, whether they were interpolated, and if so
-/// S⁻² and (f_k², g_k²) (N per node) at every node.
-#[derive(Debug, Clone, Default)]
-struct Batch {
-    key: (u64, u64, u64, usize),
-    interpolated: bool,
-    k2: Vec<f64>,
-    fg2: Vec<(f64, f64)>,
 }
 
 impl StackCache {
@@ -603,8 +582,6 @@ impl StackCache {
             base_steps: Vec::new(),
             interfaces: Vec::new(),
             scratch: vec![EMPTY_STEP; MAX_LAYERS],
-            batches: vec![Batch::default(); BATCHES],
-            next_batch: 0,
         }
     }
 
@@ -702,62 +679,6 @@ impl StackCache {
             node.generation = self.generation;
         }
         (node.s, interfaces)
-    }
-
-    /// S⁻² of the stack served at the ascending nodes q (u = ln q), into `out`: interpolated
-    /// where the nodes qualify ([`super::stack_batch`], within its `BATCH_RTOL` of
-    /// [`Self::s`]), else [`Self::s`] at each.
-    pub fn k_many(&mut self, q: &[f64], u: &[f64], out: &mut [f64]) {
-        if let Some(b) = self.interpolated(q, u) {
-            out.copy_from_slice(&self.batches[b].k2);
-        } else {
-            for (o, &q) in out.iter_mut().zip(q) {
-                *o = self.s(q).powi(-2);
-            }
-        }
-    }
-
-    /// f_k², g_k² of the stack served at its interface `k` at the ascending nodes q (u = ln q),
-    /// into `f2` and `g2`: interpolated as in [`Self::k_many`], else from [`Self::response`].
-    pub fn interface_many(
-        &mut self,
-        k: usize,
-        q: &[f64],
-        u: &[f64],
-        f2: &mut [f64],
-        g2: &mut [f64],
-    ) {
-        let n = self.stack.layers.len();
-        if let Some(b) = self.interpolated(q, u) {
-            let at = self.batches[b].fg2.iter().skip(k).step_by(n);
-            for ((fo, go), &fg) in f2.iter_mut().zip(g2.iter_mut()).zip(at) {
-                (*fo, *go) = fg;
-            }
-        } else {
-            for ((fo, go), &q) in f2.iter_mut().zip(g2.iter_mut()).zip(q) {
-                let (f, g) = self.response(q).1[k];
-                (*fo, *go) = (f * f, g * g);
-            }
-        }
-    }
-
-    /// The batch that holds the kernels at the nodes q (u = ln q), if they are interpolated:
-    /// one kept for the stack served, or a new one if the nodes qualify.
-    fn interpolated(&mut self, q: &[f64], u: &[f64]) -> Option<usize> {
-        let (first, last) = (q.first()?, q.last()?);
-        let key = (self.generation, first.to_bits(), last.to_bits(), q.len());
-        if let Some(i) = self.batches.iter().position(|b| b.key == key) {
-            return self.batches[i].interpolated.then_some(i);
-        }
-        if !super::stack_batch::qualifies(u) {
-            return None;
-        }
-        let i = self.next_batch;
-        self.next_batch = (i + 1) % BATCHES;
-        let b = &mut self.batches[i];
-        b.interpolated = super::stack_batch::interpolate(&self.stack, u, &mut b.k2, &mut b.fg2);
-        b.key = key;
-        b.interpolated.then_some(i)
     }
 }
 
