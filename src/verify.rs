@@ -41,6 +41,7 @@ use crate::topography::spectrum::{PsdOptions, map_psd};
 use serde::Serialize;
 
 pub mod grid;
+pub mod regime;
 pub mod sliding;
 
 /// Smallest side (pixels) for which a half-resolution solve is made.
