@@ -1,8 +1,8 @@
 //! The generator of the exact/Persson ratio table that the low-octave warning quotes
 //! ([`crate::check::regime`]): on a height map, for each q_L·d of [`Q_LOW_D`], one exact solve
-//! of [`design`] ([`super::solve_one`]: A/A0 and the ε-levels of the interface |τ| and σ_n) and
-//! Persson's evaluation on the map's own spectrum ([`super::map_spectrum`], as `verify`
-//! compares them), and their ratios. `examples/regime_table.rs` runs it on the bundled map and
+//! of [`design`] (A/A0 and the ε-levels of the interface |τ| and σ_n, as [`super::verify`]
+//! computes them) and Persson's evaluation on the map's own spectrum (as [`super::persson`]),
+//! and their ratios. `examples/regime_table.rs` runs it on the bundled map and
 //! writes the table.
 
 use super::{map_spectrum, solve_one};
