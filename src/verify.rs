@@ -18,13 +18,15 @@
 //!
 //! # Error estimate
 //! The solver's own tolerance bounds only part of the error; the larger part is the grid. Each
-//! number is therefore also computed on the map sampled at every second pixel (both directions,
-//! the same surface at half the resolution), and the difference of the two solutions is
-//! reported as the error of the full-resolution value (A/A0 converges at first order in the
-//! pixel size, see `examples/bench_bem.rs`, where the difference then equals the error of the
-//! finer grid; before that regime it can under-estimate it: on a 64² self-affine test map the
-//! difference to its 128² parent was 5.7× the estimate, `tests/it/exact.rs`). Maps with fewer
-//! than 32 pixels along a side get no half-resolution solve and a NaN error. The map is one period of a periodic surface, as `coatcheck verify` treats it.
+//! number is therefore also computed on the map sampled at every second pixel and at every
+//! fourth (both directions: the same surface at half and at a quarter of the resolution), and
+//! its grid error is estimated from the three values ([`grid`]: Richardson extrapolation at the
+//! observed rate, capped at first order, with a safety factor; a fixed factor on the larger
+//! difference where the values do not converge). For A/A0 the estimate covered the difference
+//! to a finer parent map of the same surface in every tested case (`tests/it/exact.rs`); it is
+//! not a proof. Maps with fewer than 64 pixels a side get the difference to the half-resolution
+//! map times 3, fewer than 32 a NaN error. The map is one period of a periodic surface, as
+//! `coatcheck verify` treats it.
 //! The minimum thickness on the map is searched by [`crate::exact`] (a solve per thickness).
 
 use crate::bem::{self, BemSettings, BemSolution, Convergence, InterfaceFields, Surface};
@@ -38,6 +40,8 @@ use crate::topography::HeightMap;
 use crate::topography::spectrum::{PsdOptions, map_psd};
 use serde::Serialize;
 
+pub mod grid;
+pub mod regime;
 pub mod sliding;
 
 /// Smallest side (pixels) for which a half-resolution solve is made.
@@ -241,6 +245,20 @@ pub(crate) fn half(surface: &Surface) -> Option<Result<Surface, Error>> {
     ))
 }
 
+/// `solve` on the map at half and at a quarter of the resolution, those that can be made
+/// ([`half`] of the map, and of that).
+pub(crate) fn coarser<T>(
+    surface: &Surface,
+    mut solve: impl FnMut(&Surface) -> Result<T, Error>,
+) -> Result<(Option<T>, Option<T>), Error> {
+    let Some(h) = half(surface) else {
+        return Ok((None, None));
+    };
+    let h = h?;
+    let quarter = half(&h).map(|q| solve(&q?)).transpose()?;
+    Ok((Some(solve(&h)?), quarter))
+}
+
 /// Solve the design at `thickness` on `surface` and judge the enabled stress checks.
 pub fn verify(
     surface: &Surface,
@@ -251,19 +269,27 @@ pub fn verify(
     let started = std::time::Instant::now();
     let stack = Stack::new(design.layers, thickness)?;
     let fine = solve_one(surface, &stack, design, settings, None)?;
-    let coarse = half(surface)
-        .map(|s| solve_one(&s?, &stack, design, settings, None))
-        .transpose()?;
+    let (coarse, quarter) = coarser(surface, |s| solve_one(s, &stack, design, settings, None))?;
     let est = |f: fn(&Solved) -> f64, floor: f64| {
         let v = f(&fine);
-        let err = coarse.as_ref().map_or(f64::NAN, |c| (v - f(c)).abs());
+        let err = grid::grid_error(v, coarse.as_ref().map(f), quarter.as_ref().map(f));
         Estimate {
             value: v,
             err: err.max(floor),
             status: Termination::Converged,
         }
     };
-    let area_fraction = est(|s| s.area, fine.area_tol);
+    let area = |s: &Solved| s.area;
+    let area_fraction = Estimate {
+        err: grid::area_grid_error(
+            fine.area,
+            coarse.as_ref().map(area),
+            quarter.as_ref().map(area),
+            surface.len(),
+        )
+        .max(fine.area_tol),
+        ..est(area, fine.area_tol)
+    };
     let mean_contact_pressure = est(|s| s.mean_pressure, 0.0);
     let tau_peak = Level {
         value: est(|s| s.tau_level, 0.0),
@@ -396,13 +422,14 @@ pub struct Comparison {
     pub rows: Vec<Row>,
     /// Wall time of the exact solve and its interface fields (s).
     pub seconds: f64,
-    /// A/A0 with its error: the solver tolerance's share plus the difference to the same map
-    /// at half the resolution (the tolerance's share alone for maps with fewer than 32 pixels a
-    /// side). A measure of the discretisation error, not a bound: on a 64² self-affine test map
-    /// the difference to its 128² parent was up to 5.7× larger (`tests/it/exact.rs`).
+    /// A/A0 with its error: the solver tolerance's share plus the grid error from the same
+    /// map at half and at a quarter of the resolution ([`grid`]; the tolerance's share alone
+    /// for maps with fewer than 32 pixels a side).
     pub area_fraction: Estimate,
     /// A/A0 of the half-resolution map, when it was solved.
     pub area_fraction_half: Option<f64>,
+    /// A/A0 of the quarter-resolution map, when it was solved.
+    pub area_fraction_quarter: Option<f64>,
 }
 
 /// The map's own spectrum (periodic, no window, all wavelengths down to the Nyquist limit, as
@@ -447,7 +474,7 @@ pub fn compare(
     let theory = persson(map, stack, p0, settings)?;
     let above_bond = bond.map(|b| fields.shear_fraction_above(b));
     let rows = comparison_rows(&solution, &fields, &theory, bond, above_bond);
-    let (area_fraction, area_fraction_half) =
+    let (area_fraction, area_fraction_half, area_fraction_quarter) =
         area_fraction_error(&surface, stack, p0, bem, solution.area_fraction)?;
     Ok(Comparison {
         surface,
@@ -459,27 +486,32 @@ pub fn compare(
         seconds,
         area_fraction,
         area_fraction_half,
+        area_fraction_quarter,
     })
 }
 
-/// A/A0 of a solve on `surface` with its error: the solver tolerance's share plus the
-/// difference to the same map at half the resolution (see [`Comparison::area_fraction`]), and
-/// the half-resolution A/A0 when the map could be halved.
+/// A/A0 of a solve on `surface` with its error: the solver tolerance's share plus the grid
+/// error (see [`Comparison::area_fraction`]), and A/A0 at half and at a quarter of the
+/// resolution where the map could be coarsened.
 pub(crate) fn area_fraction_error(
     surface: &Surface,
     stack: &Stack,
     p0: f64,
     bem: &BemSettings,
     a: Estimate,
-) -> Result<(Estimate, Option<f64>), Error> {
-    let half_area = half(surface)
-        .map(|s| Ok::<_, Error>(solve(&s?, stack, p0, bem)?.0.area_fraction.value))
-        .transpose()?;
+) -> Result<(Estimate, Option<f64>, Option<f64>), Error> {
+    let (half_area, quarter_area) = coarser(surface, |s| {
+        Ok(solve(s, stack, p0, bem)?.0.area_fraction.value)
+    })?;
+    let grid_err = match half_area {
+        None => 0.0,
+        Some(_) => grid::area_grid_error(a.value, half_area, quarter_area, surface.len()),
+    };
     let area_fraction = Estimate {
-        err: a.err + half_area.map_or(0.0, |h| (a.value - h).abs()),
+        err: a.err + grid_err,
         ..a
     };
-    Ok((area_fraction, half_area))
+    Ok((area_fraction, half_area, quarter_area))
 }
 
 /// The compared quantities: Persson's rms values, and his Gaussian quantiles of |τ| and the

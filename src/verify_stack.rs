@@ -9,8 +9,8 @@
 //! - substrate-yield at the bottom interface (the substrate's surface): the larger of p0·A0/A
 //!   and the ε-level of σ_n(x, z_N), against σ_Y / SF.
 //!
-//! The ε-levels, their `resolved` flag and the error estimate (the difference to the same map at
-//! half the resolution) are those of [`crate::verify`]. Every interface also carries the
+//! The ε-levels, their `resolved` flag and the error estimate (the grid error from the same map
+//! at half and a quarter of the resolution) are those of [`crate::verify`]. Every interface also carries the
 //! statistics of its fields at full resolution (σ_n and |τ|: mean, rms, quantiles, maximum).
 //!
 //! [`compare`] puts the exact contact beside Persson's theory on the stack
@@ -29,7 +29,7 @@ use crate::layer::stack::{Layer, Stack};
 use crate::prec::{Estimate, Settings, Termination};
 use crate::topography::HeightMap;
 use crate::verify::{
-    ExactCheck, Level, Row, converged, exact_only, half, level, map_spectrum, shear_rows,
+    ExactCheck, Level, Row, converged, exact_only, level, map_spectrum, shear_rows,
 };
 use serde::Serialize;
 
@@ -196,10 +196,10 @@ pub(crate) fn solve_one(
     })
 }
 
-/// A full-resolution value with the difference to the half-resolution one as its error (NaN
-/// without a half-resolution solve), at least `floor`.
-fn estimate(fine: f64, coarse: Option<f64>, floor: f64) -> Estimate {
-    let err = coarse.map_or(f64::NAN, |c| (fine - c).abs());
+/// A full-resolution value with the grid error from its half- and quarter-resolution values
+/// ([`crate::verify::grid`]; NaN without a half-resolution solve), at least `floor`.
+fn estimate(fine: f64, coarse: Option<f64>, quarter: Option<f64>, floor: f64) -> Estimate {
+    let err = crate::verify::grid::grid_error(fine, coarse, quarter);
     Estimate {
         value: fine,
         err: err.max(floor),
@@ -213,9 +213,10 @@ pub(crate) fn interface(
     k: usize,
     depth: f64,
     fine: SolvedInterface,
-    coarse: Option<&SolvedInterface>,
+    (coarse, quarter): (Option<&SolvedInterface>, Option<&SolvedInterface>),
 ) -> InterfaceExact {
-    let est = |f: fn(&SolvedInterface) -> f64| estimate(f(&fine), coarse.map(f), 0.0);
+    let est =
+        |f: fn(&SolvedInterface) -> f64| estimate(f(&fine), coarse.map(f), quarter.map(f), 0.0);
     let layer = &design.layers[k];
     InterfaceExact {
         name: layer.name.clone(),
@@ -297,22 +298,40 @@ pub fn verify(
     let started = std::time::Instant::now();
     let stack = design_stack(design)?;
     let fine = solve_one(surface, &stack, design, settings, None)?;
-    let coarse = half(surface)
-        .map(|s| solve_one(&s?, &stack, design, settings, None))
-        .transpose()?;
-    let top = |f: fn(&Solved) -> f64, floor| estimate(f(&fine), coarse.as_ref().map(f), floor);
-    let area_fraction = top(|s| s.area, fine.area_tol);
+    let (coarse, quarter) =
+        crate::verify::coarser(surface, |s| solve_one(s, &stack, design, settings, None))?;
+    let top = |f: fn(&Solved) -> f64, floor| {
+        estimate(
+            f(&fine),
+            coarse.as_ref().map(f),
+            quarter.as_ref().map(f),
+            floor,
+        )
+    };
+    let area = |s: &Solved| s.area;
+    let area_fraction = Estimate {
+        err: crate::verify::grid::area_grid_error(
+            fine.area,
+            coarse.as_ref().map(area),
+            quarter.as_ref().map(area),
+            surface.len(),
+        )
+        .max(fine.area_tol),
+        ..top(area, fine.area_tol)
+    };
     let mean_contact_pressure = top(|s| s.mean_pressure, 0.0);
     let sigma_rms_top = top(|s| s.sigma_top, 0.0);
     let depths = stack.depths();
     let mut coarse_interfaces = coarse.as_ref().map(|c| c.interfaces.iter());
+    let mut quarter_interfaces = quarter.as_ref().map(|c| c.interfaces.iter());
     let interfaces: Vec<InterfaceExact> = fine
         .interfaces
         .into_iter()
         .enumerate()
         .map(|(k, f)| {
             let c = coarse_interfaces.as_mut().and_then(Iterator::next);
-            interface(design, k, depths[k], f, c)
+            let q = quarter_interfaces.as_mut().and_then(Iterator::next);
+            interface(design, k, depths[k], f, (c, q))
         })
         .collect();
     let checks = judge(design, &interfaces, mean_contact_pressure);

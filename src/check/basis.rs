@@ -12,15 +12,15 @@ use crate::prec::{Settings, Termination};
 use crate::psd::Spectrum;
 
 /// How the validity warnings name the coating: a film, or the layers of a stack.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy)]
 pub(crate) struct Wording {
     /// The coating thickness in the data warnings ("film thickness").
     pub what: &'static str,
     /// The low-octave warning's q_L·depth, as it reads ("q_L d").
     pub depth: &'static str,
-    /// What the exact solutions say about the contact area at that depth, with a leading
-    /// space, or empty.
-    pub exact: &'static str,
+    /// What the exact solutions say about the contact at q_L·depth, with a leading space, or
+    /// empty.
+    pub exact: fn(f64) -> String,
     /// Where to check the result, with a leading "; ", or empty.
     pub verify: &'static str,
     /// Whose strains the slope warning names ("film").
@@ -95,7 +95,7 @@ impl Basis {
                 100.0 * c.low_octave_share,
                 wording.depth,
                 self.q_low * depth,
-                wording.exact,
+                (wording.exact)(self.q_low * depth),
                 wording.verify
             ));
         }

@@ -24,7 +24,7 @@ pub struct Checker {
 const FILM: Wording = Wording {
     what: "film thickness",
     depth: "q_L d",
-    exact: " (exact solutions: 2x at q_L d = 0.3, 10x or more at q_L d <= 0.1)",
+    exact: super::regime::sentence,
     verify: "; check with --verify on a height map",
     strained: "film",
 };

@@ -39,6 +39,7 @@ pub mod criteria;
 pub mod itp;
 pub mod levers;
 pub mod min_thickness;
+pub mod regime;
 pub mod robust;
 pub mod stack;
 pub mod stack_levers;

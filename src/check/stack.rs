@@ -130,7 +130,7 @@ pub struct StackChecker {
 const STACK: Wording = Wording {
     what: "coating thickness (all layers)",
     depth: "q_L z at the bottom interface",
-    exact: "",
+    exact: |_| String::new(),
     verify: "",
     strained: "coating",
 };

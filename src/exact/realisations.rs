@@ -17,7 +17,8 @@
 //! The spread of a number is the standard error of its mean over the K realisations, the
 //! sample standard deviation (K − 1 in the denominator) over √K: it shrinks as 1/√K because
 //! the realisations are independent (independent phases). Its grid error is the mean of the
-//! realisations' half-resolution differences ([`crate::verify`]).
+//! realisations' grid errors ([`crate::verify`]). Under sliding friction the shear vector's
+//! numbers ([`crate::verify::sliding`]) are averaged and spread in the same way.
 
 use crate::bem::Surface;
 use crate::check::{Design, MinThickness};
@@ -25,6 +26,7 @@ use crate::error::Error;
 use crate::prec::{Estimate, Termination};
 use crate::psd::Spectrum;
 use crate::topography::synth::random_phase_map;
+use crate::verify::sliding::SlidingVerification;
 use crate::verify::{Level, Verification, exact_checks};
 use std::f64::consts::PI;
 
@@ -135,7 +137,7 @@ pub(crate) fn mean(values: impl Iterator<Item = f64>) -> f64 {
 
 /// The mean of an estimate over the realisations: mean value, mean (grid) error, the worst
 /// status.
-fn mean_estimate(vs: &[Verification], f: impl Fn(&Verification) -> Estimate) -> Estimate {
+fn mean_estimate<T>(vs: &[T], f: impl Fn(&T) -> Estimate) -> Estimate {
     Estimate {
         value: mean(vs.iter().map(|v| f(v).value)),
         err: mean(vs.iter().map(|v| f(v).err)),
@@ -179,7 +181,7 @@ pub fn mean_verification(vs: &[Verification], design: &Design) -> Verification {
         bond_exceedance: mean_estimate(vs, |v| v.bond_exceedance),
         checks,
         pass,
-        sliding: None,
+        sliding: mean_sliding(vs),
         convergence: vs
             .iter()
             .map(|v| v.convergence)
@@ -187,6 +189,25 @@ pub fn mean_verification(vs: &[Verification], design: &Design) -> Verification {
             .unwrap_or(first.convergence),
         seconds: vs.iter().map(|v| v.seconds).sum(),
     }
+}
+
+/// The realisations' exact sliding numbers averaged as [`mean_verification`] averages the
+/// static ones (none without friction).
+fn mean_sliding(vs: &[Verification]) -> Option<SlidingVerification> {
+    let ss: Vec<&SlidingVerification> = vs
+        .iter()
+        .map(|v| v.sliding.as_ref())
+        .collect::<Option<_>>()?;
+    let m = |f: fn(&SlidingVerification) -> Estimate| mean_estimate(&ss, |s| f(s));
+    Some(SlidingVerification {
+        friction: ss[0].friction,
+        mean_x: m(|s| s.mean_x),
+        mean_y: m(|s| s.mean_y),
+        tau_x_rms: m(|s| s.tau_x_rms),
+        tau_y_rms: m(|s| s.tau_y_rms),
+        quantiles: [0, 1, 2].map(|i| mean_estimate(&ss, |s| s.quantiles[i])),
+        max: m(|s| s.max),
+    })
 }
 
 /// The realisations' minimum thicknesses averaged: the mean d_min with the mean bracket error

@@ -46,7 +46,7 @@ pub fn exact_utilisation(
         .interfaces
         .into_iter()
         .enumerate()
-        .map(|(k, f)| interface(&design, k, depths[k], f, None))
+        .map(|(k, f)| interface(&design, k, depths[k], f, (None, None)))
         .collect();
     let checks: Vec<ExactCheck> = judge(&design, &interfaces, Estimate::exact(s.mean_pressure))
         .into_iter()

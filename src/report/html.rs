@@ -23,9 +23,10 @@ use crate::pipeline::{Judged, Verdict};
 use crate::psd::Spectrum;
 use crate::report::plot::{Band, Extras, Legend, Marker, svg};
 
-/// Points per plotted curve.
+mod exact;
 mod sliding;
 
+/// Points per plotted curve.
 const POINTS: usize = 121;
 
 /// A figure ready for the page: caption and SVG text.
@@ -409,9 +410,17 @@ pub fn section(title: &str, j: &Judged) -> Result<Section, Error> {
             sig(scene.settings.rtol)
         ),
         format!(
-            "Model: {} of the contact stress variance comes from the lowest octave of the              spectrum (q_L d = {}). Above 0.5, exact solutions gave 2.7 times Persson's contact              area or more, and Persson's contact pressures are then conservative; run              --verify on a measured height map to check.",
+            "Model: {} of the contact stress variance comes from the lowest octave of the \
+             spectrum (q_L d = {}). Above 0.5 a few long waves carry the contact, Persson's \
+             contact area is too small and his contact pressures are conservative{}; run \
+             --verify to solve the contact exactly.",
             sig(c.low_octave_share),
-            sig(lo * outcome.thickness)
+            sig(lo * outcome.thickness),
+            if c.low_octave_share > crate::check::LOW_OCTAVE_WARN {
+                crate::check::regime::sentence(lo * outcome.thickness)
+            } else {
+                String::new()
+            }
         ),
         "Materials: the moduli and strengths are the library's values (sources above); their          spread is not propagated."
             .into(),
@@ -421,28 +430,8 @@ pub fn section(title: &str, j: &Judged) -> Result<Section, Error> {
         uncertainty.extend(super::robust::sentences(r, &scene.design(), outcome));
     }
     if let Some(e) = &j.exact {
-        for row in crate::verify::check_rows(&outcome.evaluation, &e.verification) {
-            let show = |x: crate::prec::Estimate| {
-                if row.key.ends_with("_pa") {
-                    format!("{} ± {} MPa", mpa(x.value), mpa(x.err))
-                } else {
-                    format!("{} ± {}", sig(x.value), sig(x.err))
-                }
-            };
-            exact.push([
-                row.name.to_string(),
-                row.persson.map_or("-".into(), show),
-                show(row.exact),
-            ]);
-        }
-        let v = &e.verification;
-        uncertainty.push(format!(
-            "Exact check on {} ({} x {}): exact A/A0 / Persson's = {}.",
-            e.map.display(),
-            v.nx,
-            v.ny,
-            sig(v.area_fraction.value / c.area_fraction.value)
-        ));
+        exact = exact::rows(e, outcome);
+        uncertainty.extend(exact::sentences(e, outcome));
     }
     Ok(Section {
         title: title.to_string(),

@@ -39,6 +39,10 @@ pub fn verify_table(i: &VerifyInputs, c: &Comparison) -> String {
     let (s, sol, stack, p0) = (&c.surface, &c.solution, i.stack, i.p0);
     let (xi, seconds, rows) = (s.rms_slope(), c.seconds, &c.rows);
     let (area_fraction, area_half) = (c.area_fraction, c.area_fraction_half);
+    let area_quarter = c
+        .area_fraction_quarter
+        .map(|q| format!(", a quarter {}", sig(q, 4)))
+        .unwrap_or_default();
     let mut scene = table(&["scene", "value"]);
     let l = stack.layers;
     scene.add_row(vec![
@@ -114,7 +118,7 @@ pub fn verify_table(i: &VerifyInputs, c: &Comparison) -> String {
     let area = match area_half {
         Some(h) => format!(
             "A/A0 counts pixels in contact: {} ± {} (the solver tolerance's ±{:.1e} plus the \
-             difference to the same map at half resolution, A/A0 = {})",
+             grid error from the same map at half resolution, A/A0 = {}{area_quarter})",
             sig(area_fraction.value, 4),
             sig(area_fraction.err, 2),
             sol.area_fraction.err,
@@ -203,6 +207,7 @@ pub fn verify_json(i: &VerifyInputs, c: &Comparison) -> Value {
         "area_fraction": sol.area_fraction.value,
         "area_fraction_err": c.area_fraction.err,
         "area_fraction_half_resolution": c.area_fraction_half,
+        "area_fraction_quarter_resolution": c.area_fraction_quarter,
         "persson_area_fraction": theory.area_fraction.value,
         "persson_area_fraction_err": theory.area_fraction.err,
         "sigma_rms_top_pa": sol.sigma_rms_top,
@@ -286,7 +291,8 @@ fn heading(x: &Exact) -> String {
     match &x.realisations {
         None => format!(
             "exact check on the height map {} ({} x {} pixels, q_L d = {}; boundary elements, {} \
-             iterations{solves}; error = difference to the same map at half resolution)",
+             iterations{solves}; error = grid error from the same map at half and a quarter of \
+             the resolution)",
             x.map.display(),
             v.nx,
             v.ny,
@@ -297,8 +303,8 @@ fn heading(x: &Exact) -> String {
             "exact check on {} random-phase realisations of the scene's spectrum ({}; seeds {}..{}; {} x \
              {} pixels of {} µm, q_L d = {}, modes up to {} 1/m; boundary elements{solves}): \
              each exact number is the mean over the realisations, spread = standard error of \
-             that mean, error = mean difference to the same surfaces at half resolution; the \
-             grid leaves out {} of the slope variance",
+             that mean, error = mean grid error from the same surfaces at half and a quarter \
+             of the resolution; the grid leaves out {} of the slope variance",
             r.count,
             x.map.display(),
             r.seeds[0],

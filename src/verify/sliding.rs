@@ -222,12 +222,13 @@ pub fn compare_sliding(
         &exact,
         bond.zip(above_bond),
     )?;
-    let (area_fraction, area_fraction_half) =
+    let (area_fraction, area_fraction_half, area_fraction_quarter) =
         area_fraction_error(&surface, stack, p0, bem, solution.area_fraction)?;
     Ok(SlidingComparison {
         comparison: Comparison {
             area_fraction,
             area_fraction_half,
+            area_fraction_quarter,
             surface,
             solution,
             fields: total,

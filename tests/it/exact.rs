@@ -6,16 +6,18 @@
 
 use crate::common::{json, run};
 use coatcheck::bem::{self, BemSettings, Surface};
+use coatcheck::check::Checker;
 use coatcheck::check::{CheckKind, Checks, Criteria, Design};
 use coatcheck::exact::min_thickness::min_thickness;
-use coatcheck::exact::on_surface;
 use coatcheck::exact::realisations::{grid, realisation, spread};
+use coatcheck::exact::{ExactOptions, on_realisations, on_surface};
 use coatcheck::layer::{Bilayer, Elastic, Stack};
 use coatcheck::prec::{Settings, Termination};
 use coatcheck::psd::Spectrum;
 use coatcheck::topography::HeightMap;
 use coatcheck::topography::synth::{Amplitude, SynthSpec, self_affine_map};
 use coatcheck::verify::compare;
+use coatcheck::verify::sliding::SlidingVerification;
 
 /// A self-affine map like the bundled one (H = 0.8, h_rms 0.5 µm, 0.5 µm pixels), n × n.
 fn map(n: usize, seed: u64) -> Surface {
@@ -231,44 +233,147 @@ fn check_verify_on_a_spectrum_solves_realisations() {
     }
 }
 
-/// `coatcheck verify`'s A/A0 error (the solver tolerance's share plus the difference to the map
-/// at half resolution) is a discretisation error, not the tolerance, and of the order of the
-/// difference to a finer grid of the same surface (a band-limited 128² map and its every second
-/// pixel, the 64² map whose error is estimated): within 10× of it. It is not a bound: at
-/// d = 2 µm the 128² solve differs 5.7× more than the estimate (A/A0 is not yet in its
-/// first-order regime on 64 pixels).
+/// `coatcheck verify`'s A/A0 error (the solver tolerance's share plus the grid error from the
+/// map at half and a quarter of the resolution, `coatcheck::verify::grid`) covers the grid
+/// error in practice: over self-affine maps (8 seeds), loads (0.03, 0.1, 0.3 MPa) and film
+/// thicknesses (1, 3, 10, 30 µm), the estimate on a 64² map (every second pixel of a
+/// band-limited 128² parent) is at least |A(64²) − A(128²)| in every one of the 96 cases; and
+/// it is a real grid error, not the tolerance (above 1e-4 in most cases). Seeds 5–8 were not
+/// seen when the estimate's rule was chosen. The worst ratio of the difference to the estimate
+/// is printed (`--nocapture`).
 #[test]
-fn verify_area_error_is_of_the_order_of_a_finer_grid_difference() {
-    let fine = map(128, 7);
-    let z = (0..64)
-        .flat_map(|iy| (0..64).map(move |ix| (2 * iy, 2 * ix)))
-        .map(|(iy, ix)| fine.heights[iy * 128 + ix])
-        .collect();
-    let coarse = HeightMap {
-        nx: 64,
-        ny: 64,
-        dx: 2.0 * fine.dx,
-        dy: 2.0 * fine.dy,
-        z,
-        periodic: true,
-    };
+fn verify_area_error_covers_the_difference_to_a_finer_parent() {
     let settings = BemSettings::default();
-    for d in [2e-6, 10e-6] {
-        let stack = Stack::new(layers(), d).unwrap();
-        let c = compare(&coarse, &stack, 0.1e6, &settings, Settings::default(), None).unwrap();
-        let a_fine = bem::solve(&fine, &stack, 0.1e6, &settings)
-            .unwrap()
-            .area_fraction
-            .value;
-        let a = c.area_fraction;
+    let (mut worst, mut real) = (0.0f64, 0);
+    let mut cases = 0;
+    let mut missed = Vec::new();
+    for seed in 1..=8 {
+        let fine = map(128, seed);
+        let z = (0..64)
+            .flat_map(|iy| (0..64).map(move |ix| (2 * iy, 2 * ix)))
+            .map(|(iy, ix)| fine.heights[iy * 128 + ix])
+            .collect();
+        let coarse = HeightMap {
+            nx: 64,
+            ny: 64,
+            dx: 2.0 * fine.dx,
+            dy: 2.0 * fine.dy,
+            z,
+            periodic: true,
+        };
+        for d in [1e-6, 3e-6, 10e-6, 30e-6] {
+            let stack = Stack::new(layers(), d).unwrap();
+            for p0 in [0.03e6, 0.1e6, 0.3e6] {
+                let c = compare(&coarse, &stack, p0, &settings, Settings::default(), None).unwrap();
+                let a_fine = bem::solve(&fine, &stack, p0, &settings)
+                    .unwrap()
+                    .area_fraction
+                    .value;
+                let a = c.area_fraction;
+                let finer = (a.value - a_fine).abs();
+                let case = format!(
+                    "seed {seed}, d = {d:e}, p0 = {p0:e}: |A(64²) − A(128²)| = {finer:.3e}, \
+                     estimate {:.3e} (A at 128², 64², 32², 16²: {a_fine:.5}, {:.5}, {:.5}, {:.5})",
+                    a.err,
+                    a.value,
+                    c.area_fraction_half.unwrap(),
+                    c.area_fraction_quarter.unwrap()
+                );
+                eprintln!("{case}");
+                if finer > a.err {
+                    missed.push(case);
+                }
+                worst = worst.max(finer / a.err);
+                real += usize::from(a.err > 1e-4);
+                cases += 1;
+            }
+        }
+    }
+    eprintln!("A/A0 grid error: worst |A(64²) − A(128²)| / estimate = {worst:.3} over {cases}");
+    assert!(missed.is_empty(), "not covered: {missed:#?}");
+    assert_eq!(cases, 96);
+    assert!(
+        real >= 80,
+        "a grid error above 1e-4 in only {real} of 96 cases"
+    );
+}
+
+/// Realisations under sliding friction carry the exact sliding numbers: each is the mean of the
+/// realisations' own (solved one by one here, to 1e-9 relative) with its spread, the standard
+/// error of that mean; the mean shear is μ·p0 (the q = 0 mode of the friction passes the film unchanged).
+#[test]
+fn realisations_under_friction_carry_the_sliding_means_and_spreads() {
+    let spectrum = Spectrum::self_affine(0.8, 1e5, 1.6e6, None)
+        .unwrap()
+        .scaled_to_rms_height(0.5e-6)
+        .unwrap();
+    let mut stress = Checks::all();
+    stress.min_thickness = false;
+    let d = Design {
+        friction: 0.5,
+        ..design(10e6, stress)
+    };
+    let thickness = 5e-6;
+    let persson = Checker::new(&spectrum, d.clone(), Settings::default())
+        .unwrap()
+        .evaluate(thickness)
+        .unwrap();
+    let opts = ExactOptions {
+        realisations: 3,
+        max_side: 32,
+        ..ExactOptions::default()
+    };
+    let (v, _, r) = on_realisations(&spectrum, &d, thickness, &persson, &opts).unwrap();
+    let s = v.sliding.expect("a sliding summary over the realisations");
+    let each: Vec<_> = (1..=3)
+        .map(|seed| {
+            let surface = realisation(&spectrum, &r.grid, seed).unwrap();
+            coatcheck::verify::verify(&surface, &d, thickness, &opts.bem)
+                .unwrap()
+                .sliding
+                .unwrap()
+        })
+        .collect();
+    let field = |f: fn(&SlidingVerification) -> f64| each.iter().map(f).collect::<Vec<f64>>();
+    for (key, mean, values) in [
+        (
+            "mean_interface_shear_pa",
+            s.mean_x,
+            field(|e| e.mean_x.value),
+        ),
+        (
+            "tau_x_rms_interface_pa",
+            s.tau_x_rms,
+            field(|e| e.tau_x_rms.value),
+        ),
+        (
+            "tau_y_rms_interface_pa",
+            s.tau_y_rms,
+            field(|e| e.tau_y_rms.value),
+        ),
+        (
+            "tau_abs_q99_pa",
+            s.quantiles[1],
+            field(|e| e.quantiles[1].value),
+        ),
+        ("tau_abs_max_pa", s.max, field(|e| e.max.value)),
+    ] {
+        let m = values.iter().sum::<f64>() / 3.0;
+        // Parallel sums may round differently between two solves of one surface.
         assert!(
-            a.err > 1e-4,
-            "d = {d:e}: a real error, not the tolerance: {a:?}"
+            (mean.value - m).abs() <= 1e-9 * m.abs(),
+            "{key}: {mean:?} vs {m}"
         );
-        let finer = (a.value - a_fine).abs();
+        let (got, want) = (r.spread_of(key).unwrap(), spread(&values));
         assert!(
-            finer <= 10.0 * a.err && a.err <= 10.0 * finer,
-            "d = {d:e}: 64² {a:?}, 128² {a_fine}"
+            (got - want).abs() <= 1e-9 * m.abs(),
+            "{key}: spread {got} vs {want}"
         );
     }
+    assert!(
+        (s.mean_x.value - 0.5 * 0.1e6).abs() < 1e-9 * 0.05e6,
+        "{:?}",
+        s.mean_x
+    );
+    assert!(r.spread_of("tau_x_rms_interface_pa").unwrap() > 0.0);
 }

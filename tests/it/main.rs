@@ -32,6 +32,7 @@ mod psd_convention;
 mod psd_convert;
 mod psd_moments;
 mod psd_read;
+mod regime;
 mod report_browser;
 mod robust;
 mod schema;

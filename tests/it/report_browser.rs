@@ -148,3 +148,65 @@ fn a_stack_report_renders_with_its_interfaces() {
     }
     renders_with_ink(browser, dir.path(), &html, (1000, 3000));
 }
+
+/// `check SCENE --verify --report` with `extra` flags: the directory and the page.
+fn verified_report_page(scene: &str, extra: &[&str]) -> (tempfile::TempDir, PathBuf, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let html = dir.path().join("report.html");
+    let mut args = vec![
+        "check",
+        scene,
+        "--verify",
+        "--report",
+        html.to_str().unwrap(),
+    ];
+    args.extend(extra);
+    let o = run(&args);
+    assert!(
+        matches!(o.status.code(), Some(0 | 1)),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let page = std::fs::read_to_string(&html).unwrap();
+    (dir, html, page)
+}
+
+/// With `--verify` the report sets the exact d_min with its error (bracket and grid) beside
+/// Persson's, every exact number with its grid error; for a scene given by a spectrum also the
+/// realisations' spread and the share of the slope variance their grid cannot hold. Both pages
+/// render (not blank).
+#[test]
+fn a_verified_report_shows_the_exact_d_min_and_the_realisation_spread() {
+    let (dir, html, page) = verified_report_page("examples/height-map-film.toml", &[]);
+    for want in [
+        "Persson against the exact solution",
+        "minimum thickness d_min",
+        "(bracket ± ",
+        ", grid ± ",
+        "half and a quarter of the",
+        "the exact solver at q_L d = ",
+    ] {
+        assert!(page.contains(want), "the map's page lacks '{want}'");
+    }
+    assert!(!page.contains("spread ±"), "a map has no realisations");
+    let browser = required_chromium();
+    if let Some(b) = browser {
+        renders_with_ink(b, dir.path(), &html, (1000, 5000));
+    }
+    let (dir, html, page) = verified_report_page(
+        "examples/waviness-thin-film.toml",
+        &["--realisations", "2", "--realisation-grid", "32"],
+    );
+    for want in [
+        "minimum thickness d_min",
+        "spread ± ",
+        "2 random-phase realisations",
+        "32 x 32 grid",
+        "of its slope variance lies above it",
+    ] {
+        assert!(page.contains(want), "the spectrum's page lacks '{want}'");
+    }
+    if let Some(b) = browser {
+        renders_with_ink(b, dir.path(), &html, (1000, 5000));
+    }
+}
