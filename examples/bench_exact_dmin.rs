@@ -74,7 +74,10 @@ fn arg<T: std::str::FromStr>(name: &str) -> Option<Vec<T>> {
         args.get(i + 1)
             .unwrap_or_else(|| panic!("{name} needs a value"))
             .split(',')
-            .map(|v| v.parse().ok().expect("a number"))
+            .map(|v| {
+                v.parse()
+                    .unwrap_or_else(|_| panic!("{name}: {v} is not a number"))
+            })
             .collect(),
     )
 }
