@@ -1,5 +1,5 @@
 //! Benchmark of the boundary-element contact solver (`coatcheck::bem`):
-//! `cargo run --release --example bench_bem [-- --quick] [-- --sizes 2048,4096]`.
+//! `cargo run --release --example bench_bem [-- --quick] [-- --sizes 2048,4096] [-- --runs 1]`.
 //!
 //! 1. Solve times (median of runs) of a converged solve on self-affine surfaces at A/A0 ≈ 0.05,
 //!    512² and 1024² (issue 6 targets: ≤ 1 s and ≤ 5 s on 2 cores), for a homogeneous rubber
@@ -98,6 +98,11 @@ fn main() {
         None => vec![512, 1024, 2048],
     };
     let only_sizes = args.iter().any(|a| a == "--sizes");
+    let runs_arg: Option<usize> = args.iter().position(|a| a == "--runs").map(|i| {
+        args.get(i + 1)
+            .and_then(|v| v.parse().ok())
+            .expect("--runs needs a count")
+    });
     for &n in &sizes {
         let s = surface(n, n as f64 / 8.0, 1);
         let q_l = s.q_low();
@@ -117,10 +122,12 @@ fn main() {
         ] {
             let stack = Stack::new(layers, d).expect("valid");
             let p0 = p_over * e0 * XI;
-            let runs = if n >= 2048 { 3 } else { 5 };
+            let runs = runs_arg.unwrap_or(if n >= 2048 { 3 } else { 5 });
             let (mut ts, mut tc, mut tf) = (Vec::new(), Vec::new(), Vec::new());
             let mut last = None;
             for _ in 0..runs {
+                // The previous run's fields are freed first, so that the peak memory is a solve's.
+                drop(last.take());
                 let (t, c) = (Instant::now(), cpu_seconds());
                 let sol = bem::solve(&s, &stack, p0, &settings).expect("solve");
                 ts.push(t.elapsed().as_secs_f64());

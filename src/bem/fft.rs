@@ -71,8 +71,22 @@ impl Fft2 {
     where
         M: Fn(usize, &mut [Complex64]) + Sync,
     {
+        self.filter_scaled(input, 1.0, output, multiply);
+    }
+
+    /// [`Self::filter`] of `scale · input`, the scaling done as the rows are read (the same
+    /// values as filtering a scaled copy, without the pass over memory that makes it).
+    pub(crate) fn filter_scaled<M>(
+        &mut self,
+        input: &[f64],
+        scale: f64,
+        output: &mut [f64],
+        multiply: M,
+    ) where
+        M: Fn(usize, &mut [Complex64]) + Sync,
+    {
         debug_assert_eq!(output.len(), self.nx * self.ny);
-        self.row_pass(input);
+        self.row_pass(input, scale);
         let (ny, nxc) = (self.ny, self.nxc);
         let rows = &self.rows;
         let (col_fwd, col_inv) = (&self.col_fwd, &self.col_inv);
@@ -140,7 +154,7 @@ impl Fft2 {
     where
         V: Fn(usize, &[Complex64]) -> f64 + Sync,
     {
-        self.row_pass(input);
+        self.row_pass(input, 1.0);
         let (ny, nxc) = (self.ny, self.nxc);
         let rows = &self.rows;
         let col_fwd = &self.col_fwd;
@@ -162,8 +176,8 @@ impl Fft2 {
             .sum()
     }
 
-    /// Real FFT of every row of `input` into `self.rows`.
-    fn row_pass(&mut self, input: &[f64]) {
+    /// Real FFT of every row of `scale · input` into `self.rows`.
+    fn row_pass(&mut self, input: &[f64], scale: f64) {
         let (nx, nxc) = (self.nx, self.nxc);
         debug_assert_eq!(input.len(), nx * self.ny);
         let per_task = rows_per_chunk(nx);
@@ -175,7 +189,9 @@ impl Fft2 {
                 || (vec![0.0; nx], row_fwd.make_scratch_vec()),
                 |(buf, scratch), (out, inp)| {
                     for (o, i) in out.chunks_exact_mut(nxc).zip(inp.chunks_exact(nx)) {
-                        buf.copy_from_slice(i);
+                        for (b, v) in buf.iter_mut().zip(i) {
+                            *b = scale * v;
+                        }
                         row_fwd
                             .process_with_scratch(buf, o, scratch)
                             .expect("buffer lengths are fixed when the plan is made");

@@ -58,7 +58,7 @@ use rustfft::num_complex::Complex64;
 use serde::Serialize;
 use std::f64::consts::PI;
 
-/// Probabilities at which field quantiles are reported.
+/// Probabilities at which field quantiles are reported (increasing).
 pub const QUANTILES: [f64; 4] = [0.5, 0.9, 0.99, 0.999];
 
 /// Incremental displacement updates between two FFT recomputations, at most.
@@ -260,25 +260,34 @@ impl FieldStats {
             }),
             0,
         ) / nf;
-        let mut sorted = values.to_vec();
-        sorted.par_sort_unstable_by(f64::total_cmp);
-        let quantiles = QUANTILES
+        let mut work = values.to_vec();
+        // Nearest-rank order statistics by selection, in increasing rank: after selecting rank
+        // r, `work[..r]` holds the r smallest values, so the next rank is selected in the rest.
+        let mut done = 0;
+        let mut quantiles = Vec::with_capacity(QUANTILES.len());
+        for &prob in &QUANTILES {
+            let idx = ((prob * nf).ceil() as usize).clamp(1, n) - 1;
+            if idx >= done {
+                work[done..].select_nth_unstable_by(idx - done, f64::total_cmp);
+                done = idx + 1;
+            }
+            quantiles.push(Quantile {
+                prob,
+                value: work[idx],
+            });
+        }
+        let max = work[done.min(n - 1)..]
             .iter()
-            .map(|&prob| {
-                let rank = ((prob * nf).ceil() as usize).clamp(1, n);
-                Quantile {
-                    prob,
-                    value: sorted[rank - 1],
-                }
-            })
-            .collect();
+            .copied()
+            .max_by(f64::total_cmp)
+            .expect("n > 0");
         Self {
             samples: n,
             mean,
             rms: ms.sqrt(),
             rms_dev: var.sqrt(),
             quantiles,
-            max: sorted[n - 1],
+            max,
         }
     }
 
@@ -489,8 +498,9 @@ where
     let n = nx * ny;
     let mut plan = Fft2::new(nx, ny);
     let kernel = kernel_grid(surface, &compliance)?;
-    let convolve = |plan: &mut Fft2, input: &[f64], out: &mut [f64]| {
-        plan.filter(input, out, |kx, col| {
+    // K (scale·input): the scale is applied as the rows are read.
+    let convolve = |plan: &mut Fft2, input: &[f64], scale: f64, out: &mut [f64]| {
+        plan.filter_scaled(input, scale, out, |kx, col| {
             for (c, k) in col.iter_mut().zip(&kernel[kx * ny..(kx + 1) * ny]) {
                 *c *= *k;
             }
@@ -501,14 +511,16 @@ where
     let mut green = vec![0.0; n];
     let mut unit = vec![0.0; n];
     unit[0] = 1.0;
-    convolve(&mut plan, &unit, &mut green);
+    convolve(&mut plan, &unit, 1.0, &mut green);
     drop(unit);
     let mean_h = surface.mean();
     let h: Vec<f64> = surface.heights.iter().map(|v| v - mean_h).collect();
     let h_rms = surface.h_rms();
     let tol = settings.gap_tol * h_rms;
 
-    // p: admissible pressure (p ≥ 0, mean p0); u = K p; g: gap; t: conjugate direction; r = K t.
+    // p: admissible pressure (p ≥ 0, mean p0) is ps·p, the rescaling to the mean p0 of each step
+    // being applied when p is next read; u = K ps·p; g: gap; t: conjugate direction; r = K t.
+    let mut ps = 1.0;
     let mut p = match start {
         Some(start) => warm_pressure(start, n, p0)?,
         None => vec![p0; n],
@@ -529,7 +541,7 @@ where
     let (mut gap_rms, mut penetration);
     loop {
         if need_fresh {
-            convolve(&mut plan, &p, &mut u);
+            convolve(&mut plan, &p, ps, &mut u);
             need_fresh = false;
             since_fresh = 0;
         }
@@ -553,7 +565,7 @@ where
             (num, sum_t) = direction(&mut t, &g, &p, 0.0);
         }
         let tbar = sum_t / n_c;
-        convolve(&mut plan, &t, &mut r);
+        convolve(&mut plan, &t, 1.0, &mut r);
         // Σ_c (r − r̄) t = Σ_c r (t − t̄): the rigid-shift part of K t drops out.
         let den = sum(
             &chunked_ref(&r, |o, rc| {
@@ -577,12 +589,9 @@ where
             });
         }
         let step = num / den;
-        let (total, changes) = project(&mut p, &t, &g, step);
+        let (total, changes) = project(&mut p, ps, &t, &g, step);
         let scale = p0 * n as f64 / total;
-        chunked(&mut p, |_, pc| {
-            pc.iter_mut().for_each(|pi| *pi *= scale);
-            [0.0; 0]
-        });
+        ps = scale;
         match changes {
             Some(changes) if since_fresh < REFRESH_EVERY => {
                 let field = Field {
@@ -596,6 +605,10 @@ where
             _ => need_fresh = true,
         }
     }
+    chunked(&mut p, |_, pc| {
+        pc.iter_mut().for_each(|pi| *pi *= ps);
+        [0.0; 0]
+    });
     let status = if gap_rms <= tol && penetration <= tol {
         Termination::Converged
     } else {
@@ -672,11 +685,11 @@ fn direction(t: &mut [f64], g: &[f64], p: &[f64], beta: f64) -> (f64, f64) {
 /// Changed points (index, change) of one projection step.
 type Changes = Vec<(usize, f64)>;
 
-/// p ← p − step·t on the contact set, projected to p ≥ 0, with penetrating points (g < 0)
+/// p ← ps·p − step·t on the contact set, projected to p ≥ 0, with penetrating points (g < 0)
 /// re-admitted at −step·g; returns Σ p and, if there are at most [`SPARSE_MAX`], the points
-/// clamped or re-admitted with their change beyond the linear update p − step·t (t is 0 off
+/// clamped or re-admitted with their change beyond the linear update ps·p − step·t (t is 0 off
 /// the contact set), in index order.
-fn project(p: &mut [f64], t: &[f64], g: &[f64], step: f64) -> (f64, Option<Changes>) {
+fn project(p: &mut [f64], ps: f64, t: &[f64], g: &[f64], step: f64) -> (f64, Option<Changes>) {
     let parts: Vec<(f64, Changes, bool)> = p
         .par_chunks_mut(PAR_CHUNK)
         .enumerate()
@@ -684,6 +697,7 @@ fn project(p: &mut [f64], t: &[f64], g: &[f64], step: f64) -> (f64, Option<Chang
             let o = c * PAR_CHUNK;
             let (mut total, mut changes, mut many) = (0.0, Vec::new(), false);
             for (k, (pi, (ti, gi))) in pc.iter_mut().zip(t[o..].iter().zip(&g[o..])).enumerate() {
+                *pi *= ps;
                 let linear = *pi - step * ti;
                 let mut changed = false;
                 if *pi > 0.0 {
@@ -975,6 +989,29 @@ mod tests {
         // Variance of 1..n is (n² − 1)/12.
         assert!((s.rms_dev - ((1e6 - 1.0) / 12.0f64).sqrt()).abs() < 1e-9);
         assert!(FieldStats::of(&[]).mean.is_nan());
+    }
+
+    #[test]
+    fn field_stats_quantiles_are_the_sorted_samples() {
+        // Ties, signed zeros and ranks that coincide (n = 7: 0.99 and 0.999 both give rank 7)
+        // against the nearest-rank values of a full sort.
+        for n in [1, 2, 7, 1000, 4099] {
+            let v: Vec<f64> = (0..n)
+                .map(|i| match (i * 7919) % 13 {
+                    0 => 0.0,
+                    1 => -0.0,
+                    k => ((i * 104_729) % 97) as f64 - 40.0 + k as f64,
+                })
+                .collect();
+            let mut sorted = v.clone();
+            sorted.sort_by(f64::total_cmp);
+            let s = FieldStats::of(&v);
+            for q in &s.quantiles {
+                let rank = ((q.prob * n as f64).ceil() as usize).clamp(1, n);
+                assert_eq!(q.value.to_bits(), sorted[rank - 1].to_bits(), "n = {n}");
+            }
+            assert_eq!(s.max.to_bits(), sorted[n - 1].to_bits(), "n = {n}");
+        }
     }
 
     #[test]
