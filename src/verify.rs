@@ -38,6 +38,7 @@ use crate::topography::HeightMap;
 use crate::topography::spectrum::{PsdOptions, map_psd};
 use serde::Serialize;
 
+pub mod boundary;
 pub mod sliding;
 
 /// Smallest side (pixels) for which a half-resolution solve is made.

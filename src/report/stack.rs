@@ -35,6 +35,7 @@ pub fn scene(j: &Judged, o: &StackOutcome, format: Format) -> Result<String, Err
                     "\n{}",
                     super::verify_stack::check_table(&x.map, o, &x.verification)
                 );
+                t += &format!("boundary of the exact solve: {}\n", x.boundary.describe());
             }
             t
         }
@@ -49,6 +50,7 @@ pub fn scene(j: &Judged, o: &StackOutcome, format: Format) -> Result<String, Err
                     &x.verification,
                 ))?;
                 v["verify"] = super::verify_stack::check_json(&x.map, o, &x.verification);
+                v["verify"]["boundary"] = x.boundary.json();
                 v["verdict_with_verify"] = json!(if j.pass() { "pass" } else { "fail" });
             }
             if !j.files.is_empty() {
