@@ -9,7 +9,7 @@
 //! The worst file: a failing file before a passing one, then the smallest margin of the
 //! governing check.
 
-use crate::bem::{BemSettings, Surface};
+use crate::bem::{BemSettings, Boundary, Surface};
 use crate::check::levers::{Lever, levers};
 use crate::check::robust::{self, Robust};
 use crate::check::stack::{StackChecker, StackOutcome};
@@ -26,6 +26,7 @@ use crate::scene::{RoughnessSource, Scene};
 use crate::topography::io::{HeightKind, MapOptions, read_height_map, sniff};
 use crate::topography::plausible::{edge_mismatch_map, periodic_warning};
 use crate::verify::Verification;
+use crate::verify::boundary::BoundaryDecision;
 use crate::verify_stack::StackVerification;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -54,6 +55,8 @@ pub struct Exact {
     pub min_thickness: Option<ExactMinThickness>,
     /// The realisations of a scene without a height map.
     pub realisations: Option<Realisations>,
+    /// The boundary of the solves.
+    pub boundary: BoundaryDecision,
 }
 
 /// The exact check of `check --verify` on a layer stack: the height map and what the boundary
@@ -69,6 +72,8 @@ pub struct StackExact {
     pub min_thickness: Option<ExactMinThickness>,
     /// The realisations of a scene without a height map.
     pub realisations: Option<StackRealisations>,
+    /// The boundary of the solves.
+    pub boundary: BoundaryDecision,
 }
 
 /// The outcome of a film or of a layer stack.
@@ -388,16 +393,25 @@ fn stack_exact_check(
     let design = scene.stack_design();
     if let RoughnessSource::Profile { path } = &scene.roughness.source {
         let (surface, mismatch) = scene_map(path)?;
-        warnings.extend(periodic_warning(path, mismatch));
-        let (verification, min_thickness) = on_stack_surface(&surface, &design, &opts.bem)?;
+        let (boundary, bem) = map_boundary(opts, path, mismatch, warnings);
+        let (verification, min_thickness) = on_stack_surface(&surface, &design, &bem)?;
         return Ok(StackExact {
             map: path.clone(),
             verification,
             min_thickness,
             realisations: None,
+            boundary,
         });
     }
     let (spectrum, _) = scene.roughness.spectrum()?;
+    let boundary = BoundaryDecision::synthesised(opts.boundary);
+    let opts = &ExactOptions {
+        bem: BemSettings {
+            boundary: boundary.boundary,
+            ..opts.bem
+        },
+        ..*opts
+    };
     let (verification, min_thickness, realisations) =
         on_stack_realisations(&spectrum, &design, opts)?;
     warnings.extend(unresolved_warning(&realisations.grid));
@@ -406,6 +420,7 @@ fn stack_exact_check(
         verification,
         min_thickness,
         realisations: Some(realisations),
+        boundary,
     })
 }
 
@@ -445,16 +460,25 @@ fn exact_check(
     let design = scene.design();
     if let RoughnessSource::Profile { path } = &scene.roughness.source {
         let (surface, mismatch) = scene_map(path)?;
-        warnings.extend(periodic_warning(path, mismatch));
-        let (verification, min_thickness) = on_surface(&surface, &design, thickness, &opts.bem)?;
+        let (boundary, bem) = map_boundary(opts, path, mismatch, warnings);
+        let (verification, min_thickness) = on_surface(&surface, &design, thickness, &bem)?;
         return Ok(Exact {
             map: path.clone(),
             verification,
             min_thickness,
             realisations: None,
+            boundary,
         });
     }
     let (spectrum, _) = scene.roughness.spectrum()?;
+    let boundary = BoundaryDecision::synthesised(opts.boundary);
+    let opts = &ExactOptions {
+        bem: BemSettings {
+            boundary: boundary.boundary,
+            ..opts.bem
+        },
+        ..*opts
+    };
     let (verification, min_thickness, realisations) =
         on_realisations(&spectrum, &design, thickness, &outcome.evaluation, opts)?;
     warnings.extend(unresolved_warning(&realisations.grid));
@@ -463,7 +487,27 @@ fn exact_check(
         verification,
         min_thickness,
         realisations: Some(realisations),
+        boundary,
     })
+}
+
+/// The boundary of the exact solve on a map of edge mismatch `mismatch` and the solver settings
+/// with it; a map solved as periodic whose edges do not join is warned about.
+fn map_boundary(
+    opts: &ExactOptions,
+    path: &Path,
+    mismatch: f64,
+    warnings: &mut Vec<String>,
+) -> (BoundaryDecision, BemSettings) {
+    let boundary = BoundaryDecision::from_ratio(opts.boundary, mismatch);
+    if boundary.boundary == Boundary::Periodic {
+        warnings.extend(periodic_warning(path, mismatch));
+    }
+    let bem = BemSettings {
+        boundary: boundary.boundary,
+        ..opts.bem
+    };
+    (boundary, bem)
 }
 
 /// The height map behind `check --verify` (it must be a height map, not line scans) with its

@@ -40,6 +40,7 @@ use crate::topography::HeightMap;
 use crate::topography::spectrum::{PsdOptions, map_psd};
 use serde::Serialize;
 
+pub mod boundary;
 pub mod grid;
 pub mod regime;
 pub mod sliding;

@@ -44,8 +44,10 @@
 //! interface ([`solve_stack`], [`stack_interface_fields`]).
 
 mod fft;
+pub mod free;
 pub mod sliding;
 mod stack;
+pub use free::Boundary;
 pub use stack::{solve_stack, solve_stack_from, stack_interface_fields};
 
 use crate::error::Error;
@@ -175,6 +177,8 @@ pub struct BemSettings {
     pub gap_tol: f64,
     /// Iteration limit; reaching it gives [`Termination::ToleranceNotReached`].
     pub max_iter: usize,
+    /// Periodic map, or a window with free boundaries ([`free`]).
+    pub boundary: Boundary,
 }
 
 impl Default for BemSettings {
@@ -182,6 +186,7 @@ impl Default for BemSettings {
         Self {
             gap_tol: 1e-6,
             max_iter: 20_000,
+            boundary: Boundary::Periodic,
         }
     }
 }
@@ -324,6 +329,8 @@ pub struct BemSolution {
     /// Rms of p − p0 over the whole nominal area (Persson's σ_rms at z = 0).
     pub sigma_rms_top: f64,
     pub convergence: Convergence,
+    /// The boundary the contact was solved with.
+    pub boundary: Boundary,
 }
 
 /// Interface (z = d) stress fields and their statistics.
@@ -423,7 +430,26 @@ pub fn solve(
     let e0 = stack.layers.film.e_star();
     let d = stack.thickness;
     let layers = stack.layers;
+    if settings.boundary == Boundary::Free {
+        return free::solve_free(
+            surface,
+            &film_solid(stack, &|q| layers.s(q * d)),
+            p0,
+            settings,
+            None,
+        );
+    }
     solve_with_compliance(surface, |q| 2.0 * layers.s(q * d) / (q * e0), p0, settings)
+}
+
+/// The film on its substrate as the free-boundary kernel sees it (`s`: S at q).
+fn film_solid<'a>(stack: &Stack, s: &'a (dyn Fn(f64) -> f64 + Sync)) -> free::Solid<'a> {
+    free::Solid::Layered {
+        e_star: stack.layers.film.e_star(),
+        s,
+        thinnest: stack.thickness,
+        total: stack.thickness,
+    }
 }
 
 /// [`solve`] warm-started from the pressure field `start` (Pa, `start[iy * nx + ix]`, e.g. the
@@ -442,6 +468,10 @@ pub fn solve_from(
     let e0 = stack.layers.film.e_star();
     let d = stack.thickness;
     let layers = stack.layers;
+    if settings.boundary == Boundary::Free {
+        let s = |q: f64| layers.s(q * d);
+        return free::solve_free(surface, &film_solid(stack, &s), p0, settings, Some(start));
+    }
     let compliance = |q: f64| 2.0 * layers.s(q * d) / (q * e0);
     solve_compliance_from(surface, compliance, p0, settings, Some(start))
 }
@@ -802,6 +832,7 @@ fn solution(
             load_error: (mean_p - p0).abs() / p0,
             ..convergence
         },
+        boundary: Boundary::Periodic,
     }
 }
 
@@ -896,6 +927,9 @@ pub fn interface_fields_with<T>(
 where
     T: Fn(f64) -> (f64, f64) + Sync,
 {
+    if solution.boundary == Boundary::Free {
+        return free::interface_fields_with(solution, transfer);
+    }
     let (nx, ny) = (solution.nx, solution.ny);
     let n = nx * ny;
     let nxc = nx / 2 + 1;

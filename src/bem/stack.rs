@@ -3,8 +3,9 @@
 //! layer's E1*, `layer::stack`), and the fields at every interface k from the transfer functions
 //! f_k(q), g_k(q) (notes.md, "Layer stacks").
 
+use super::free::{Solid, solve_free};
 use super::{
-    BemSettings, BemSolution, InterfaceFields, Surface, interface_fields_with,
+    BemSettings, BemSolution, Boundary, InterfaceFields, Surface, interface_fields_with,
     solve_compliance_from, solve_with_compliance,
 };
 use crate::error::Error;
@@ -26,6 +27,21 @@ pub fn solve_stack(
     settings: &BemSettings,
 ) -> Result<BemSolution, Error> {
     let e1 = stack.layers()[0].material.e_star();
+    if settings.boundary == Boundary::Free {
+        let layers = stack.layers();
+        let s = |q: f64| response(stack, q).0;
+        let solid = Solid::Layered {
+            e_star: e1,
+            s: &s,
+            thinnest: layers
+                .iter()
+                .map(|l| l.thickness)
+                .filter(|&t| t > 0.0)
+                .fold(f64::INFINITY, f64::min),
+            total: layers.iter().map(|l| l.thickness).sum(),
+        };
+        return solve_free(surface, &solid, p0, settings, None);
+    }
     solve_with_compliance(
         surface,
         |q| 2.0 * response(stack, q).0 / (q * e1),

@@ -114,6 +114,7 @@ fn exact_options(args: &CheckArgs) -> Result<ExactOptions, Error> {
         bem: BemSettings::default(),
         realisations: args.realisations,
         max_side: n,
+        boundary: args.boundary.into(),
     })
 }
 

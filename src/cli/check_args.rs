@@ -68,6 +68,10 @@ pub struct CheckArgs {
     /// grid in pixels, a power of two from 32 to 4096 (a solve holds about 120 n² bytes).
     #[arg(long, value_name = "N", requires = "verify", default_value_t = coatcheck::exact::realisations::DEFAULT_MAX_SIDE)]
     pub realisation_grid: usize,
+    /// With --verify: the boundary of the exact solve on the height map (auto, periodic or
+    /// free; see `coatcheck verify --help`). Realisations are periodic unless free is given.
+    #[arg(long, value_enum, requires = "verify", default_value = "auto")]
+    pub boundary: super::verify::BoundaryArg,
     /// Also write the qualification report as one self-contained HTML page (verdict, checks,
     /// what would make a failing design pass, inputs with sources, plots, warnings,
     /// uncertainty), atomically; a batch gets a summary and a section per scene.

@@ -19,9 +19,31 @@ use coatcheck::scene::Key;
 use coatcheck::topography::HeightMap;
 use coatcheck::topography::io::{MapOptions, read_height_map};
 use coatcheck::units::{Dim, parse_quantity};
+use coatcheck::verify::boundary::{BoundaryChoice, BoundaryDecision};
 use coatcheck::verify::compare;
 use coatcheck::verify::sliding::compare_sliding;
 use std::path::PathBuf;
+
+/// `--boundary` of `verify` and `check --verify`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum BoundaryArg {
+    /// Free if the map's edges do not join (edge mismatch above 3), else periodic.
+    Auto,
+    /// The map is one period of a periodic surface.
+    Periodic,
+    /// The map is a window of a larger surface (zero-padded, Hockney).
+    Free,
+}
+
+impl From<BoundaryArg> for BoundaryChoice {
+    fn from(b: BoundaryArg) -> Self {
+        match b {
+            BoundaryArg::Auto => Self::Auto,
+            BoundaryArg::Periodic => Self::Periodic,
+            BoundaryArg::Free => Self::Free,
+        }
+    }
+}
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum FormatArg {
@@ -91,6 +113,12 @@ pub struct VerifyArgs {
     /// (frictionless) pressure, and the interface shear vector is compared with Persson's.
     #[arg(long, allow_hyphen_values = true)]
     pub friction: Option<String>,
+    /// Boundary of the map in the exact solve: periodic (one period of a periodic surface),
+    /// free (a window of a larger, unloaded surface; the total force is p0 times the map's
+    /// area), or auto (free when the rms height step across the map's edges exceeds 3 times
+    /// the rms step between neighbours).
+    #[arg(long, value_enum, default_value = "auto")]
+    pub boundary: BoundaryArg,
 }
 
 /// The largest `--gap-tol`: the solver's gaps and penetrations are then within 1% of h_rms; a
@@ -133,6 +161,8 @@ pub(super) struct Inputs {
     /// The friction coefficient (0 without friction).
     pub mu: f64,
     pub map: HeightMap,
+    /// The boundary of the solve (set in `settings`).
+    pub boundary: BoundaryDecision,
 }
 
 /// The flags of [`Inputs`], checked, and the map read.
@@ -181,9 +211,11 @@ pub(super) fn inputs(a: &VerifyArgs) -> Result<Inputs, Error> {
         .transpose()?
         .unwrap_or(0.0);
     let map = read_height_map(&a.map, &opts)?;
+    let boundary = BoundaryDecision::for_map(a.boundary.into(), &map);
     let settings = BemSettings {
         gap_tol: a.gap_tol,
         max_iter: a.max_iter,
+        boundary: boundary.boundary,
     };
     Ok(Inputs {
         p0,
@@ -192,6 +224,7 @@ pub(super) fn inputs(a: &VerifyArgs) -> Result<Inputs, Error> {
         rtol,
         mu,
         map,
+        boundary,
     })
 }
 
@@ -228,6 +261,7 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
         rtol,
         mu,
         map,
+        boundary,
     } = inputs(&a)?;
     let stack = Stack::new(Bilayer::new(film, substrate), d)?;
     let (c, sliding) = if mu > 0.0 {
@@ -247,6 +281,7 @@ pub fn run(a: VerifyArgs) -> Result<i32, Error> {
         stack: &stack,
         p0,
         bond,
+        boundary,
     };
     let mut table = verify_table(&inputs, &c);
     if let Some(s) = &sliding {

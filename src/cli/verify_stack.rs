@@ -34,6 +34,7 @@ pub fn run(a: &VerifyArgs) -> Result<i32, Error> {
         settings,
         rtol,
         map,
+        boundary,
         ..
     } = inputs(a)?;
     let c = compare(&map, &stack, p0, &settings, Settings { rtol }, bond)?;
@@ -49,6 +50,7 @@ pub fn run(a: &VerifyArgs) -> Result<i32, Error> {
         names: &names,
         p0,
         bond,
+        boundary,
     };
     let table = verify_table(&inputs, &c);
     report::stdout(&match a.format {

@@ -18,6 +18,7 @@ use crate::bem::{BemSettings, Surface};
 use crate::check::{Design, Evaluation};
 use crate::error::Error;
 use crate::psd::Spectrum;
+use crate::verify::boundary::BoundaryChoice;
 use crate::verify::{Verification, check_rows, verify};
 use min_thickness::ExactMinThickness;
 use realisations::Grid;
@@ -30,6 +31,8 @@ pub struct ExactOptions {
     pub realisations: usize,
     /// The largest side of a realisation's grid (pixels, a power of two).
     pub max_side: usize,
+    /// The boundary of the solves (`bem.boundary` is set from it).
+    pub boundary: BoundaryChoice,
 }
 
 impl Default for ExactOptions {
@@ -38,6 +41,7 @@ impl Default for ExactOptions {
             bem: BemSettings::default(),
             realisations: realisations::DEFAULT_REALISATIONS,
             max_side: realisations::DEFAULT_MAX_SIDE,
+            boundary: BoundaryChoice::Auto,
         }
     }
 }

@@ -32,6 +32,7 @@ pub fn scene(j: &Judged, o: &StackOutcome, format: Format) -> Result<String, Err
             let mut t = format!("{}{}", batch::files_table(j), human(scene, o, &j.levers));
             if let Some(x) = &j.stack_exact {
                 t += &format!("\n{}", super::verify_stack::check_table(x, o));
+                t += &format!("boundary of the exact solve: {}\n", x.boundary.describe());
             }
             if let Some(r) = &j.stack_robust {
                 t += &format!(
@@ -49,6 +50,7 @@ pub fn scene(j: &Judged, o: &StackOutcome, format: Format) -> Result<String, Err
                 super::finite_only(&super::verify_stack::check_table(x, o))?;
                 v["verify"] = super::verify_stack::check_json(x, o);
                 v["exact"] = super::verify_stack::exact_json(x, o);
+                v["verify"]["boundary"] = x.boundary.json();
                 v["verdict_with_verify"] = json!(if j.pass() { "pass" } else { "fail" });
             }
             if let Some(r) = &j.stack_robust {

@@ -10,6 +10,7 @@ use crate::error::Error;
 use crate::exact::min_thickness::ExactMinThickness;
 use crate::layer::Stack;
 use crate::pipeline::Exact;
+use crate::verify::boundary::BoundaryDecision;
 use crate::verify::sliding::ExactSliding;
 use crate::verify::{Comparison, ExactCheck, check_rows};
 use serde_json::{Value, json};
@@ -22,6 +23,8 @@ pub struct VerifyInputs<'a> {
     pub stack: &'a Stack,
     pub p0: f64,
     pub bond: Option<f64>,
+    /// The boundary of the solve.
+    pub boundary: BoundaryDecision,
 }
 
 pub(super) fn stats_json(s: &FieldStats) -> Value {
@@ -81,6 +84,7 @@ pub fn verify_table(i: &VerifyInputs, c: &Comparison) -> String {
         ),
     ]);
     scene.add_row(vec!["pressure p0".into(), format!("{} MPa", mpa(p0))]);
+    scene.add_row(vec!["boundary".into(), i.boundary.describe()]);
     let c = &sol.convergence;
     scene.add_row(vec![
         "solver".into(),
@@ -204,6 +208,7 @@ pub fn verify_json(i: &VerifyInputs, c: &Comparison) -> Value {
         "q_low_d": surface.q_low() * d,
         "thickness_m": d, "pressure_pa": p0,
         "solver": solver_json(&sol.convergence, seconds),
+        "boundary": i.boundary.json(),
         "area_fraction": sol.area_fraction.value,
         "area_fraction_err": c.area_fraction.err,
         "area_fraction_half_resolution": c.area_fraction_half,
@@ -288,11 +293,12 @@ fn heading(x: &Exact) -> String {
         .as_ref()
         .map(|m| format!(", {} more for the minimum thickness", m.solves))
         .unwrap_or_default();
+    let boundary = x.boundary.describe();
     match &x.realisations {
         None => format!(
             "exact check on the height map {} ({} x {} pixels, q_L d = {}; boundary elements, {} \
-             iterations{solves}; error = grid error from the same map at half and a quarter of \
-             the resolution)",
+             iterations{solves}; boundary {boundary}; error = grid error from the same map at \
+             half and a quarter of the resolution)",
             x.map.display(),
             v.nx,
             v.ny,
@@ -301,7 +307,8 @@ fn heading(x: &Exact) -> String {
         ),
         Some(r) => format!(
             "exact check on {} random-phase realisations of the scene's spectrum ({}; seeds {}..{}; {} x \
-             {} pixels of {} µm, q_L d = {}, modes up to {} 1/m; boundary elements{solves}): \
+             {} pixels of {} µm, q_L d = {}, modes up to {} 1/m; boundary elements{solves}; \
+             boundary {boundary}): \
              each exact number is the mean over the realisations, spread = standard error of \
              that mean, error = mean grid error from the same surfaces at half and a quarter \
              of the resolution; the grid leaves out {} of the slope variance",
@@ -478,6 +485,7 @@ pub fn check_json(x: &Exact, outcome: &Outcome) -> Value {
         json!(v.checks.iter().map(exact_check_json).collect::<Vec<_>>()),
     );
     m.insert("solver".into(), solver_json(&v.convergence, v.seconds));
+    m.insert("boundary".into(), x.boundary.json());
     m.insert(
         "verdict".into(),
         json!(if v.pass { "pass" } else { "fail" }),

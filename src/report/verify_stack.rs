@@ -26,6 +26,7 @@ use crate::layer::stack::Stack;
 use crate::pipeline::StackExact;
 use crate::prec::Estimate;
 use crate::verify::Row;
+use crate::verify::boundary::BoundaryDecision;
 use crate::verify_stack::{StackComparison, StackVerification};
 use serde_json::{Map, Value, json};
 use std::io::Write;
@@ -39,6 +40,8 @@ pub struct StackVerifyInputs<'a> {
     pub names: &'a [String],
     pub p0: f64,
     pub bond: Option<f64>,
+    /// The boundary of the solve.
+    pub boundary: BoundaryDecision,
 }
 
 /// Stresses in MPa, the rest as they are.
@@ -99,6 +102,7 @@ pub fn verify_table(i: &StackVerifyInputs, c: &StackComparison) -> String {
         format!("E = {}, nu = {}", modulus(sub.youngs), sub.poisson),
     ]);
     scene.add_row(vec!["pressure p0".into(), format!("{} MPa", mpa(i.p0))]);
+    scene.add_row(vec!["boundary".into(), i.boundary.describe()]);
     let v = &sol.convergence;
     scene.add_row(vec![
         "solver".into(),
@@ -195,6 +199,7 @@ pub fn verify_json(i: &StackVerifyInputs, c: &StackComparison) -> Value {
         "q_low_d": surface.q_low() * z,
         "thickness_m": z, "pressure_pa": i.p0,
         "solver": solver_json(&sol.convergence, c.seconds),
+        "boundary": i.boundary.json(),
         "area_fraction": sol.area_fraction.value,
         "area_fraction_err": sol.area_fraction.err,
         "persson_area_fraction": theory.top.area_fraction.value,

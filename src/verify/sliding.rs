@@ -14,8 +14,9 @@
 //! [`super::verify`]) into `check --verify`.
 
 use super::{CheckRow, Comparison, Row, area_fraction_error, comparison_rows, map_spectrum, solve};
-use crate::bem::sliding::friction_fields;
-use crate::bem::{BemSettings, BemSolution, FieldStats, InterfaceFields, Surface};
+use crate::bem::free;
+use crate::bem::sliding::{FrictionFields, friction_fields};
+use crate::bem::{BemSettings, BemSolution, Boundary, FieldStats, InterfaceFields, Surface};
 use crate::check::Evaluation;
 use crate::contact::{Contact, Engine, Request, SlidingShear, friction_coupling};
 use crate::error::Error;
@@ -73,13 +74,31 @@ pub fn with_friction(
     if mu == 0.0 {
         return Ok(None);
     }
-    let f = friction_fields(
-        &solution.pressure,
-        (solution.nx, solution.ny),
-        (solution.dx, solution.dy),
-        stack,
-        mu,
-    )?;
+    let f = match solution.boundary {
+        Boundary::Periodic => friction_fields(
+            &solution.pressure,
+            (solution.nx, solution.ny),
+            (solution.dx, solution.dy),
+            stack,
+            mu,
+        )?,
+        // The zero-padded pressure on the doubled grid, as the static fields (`bem::free`).
+        Boundary::Free => {
+            let nx = solution.nx;
+            let f = friction_fields(
+                &free::padded(&solution.pressure, nx),
+                (2 * nx, 2 * solution.ny),
+                (solution.dx, solution.dy),
+                stack,
+                mu,
+            )?;
+            FrictionFields {
+                shear_x: free::cropped(&f.shear_x, nx),
+                shear_y: free::cropped(&f.shear_y, nx),
+                normal: free::cropped(&f.normal, nx),
+            }
+        }
+    };
     let add =
         |a: &[f64], b: &[f64]| -> Vec<f64> { a.par_iter().zip(b).map(|(a, b)| a + b).collect() };
     let normal = add(&fields.normal, &f.normal);

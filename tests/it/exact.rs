@@ -66,6 +66,7 @@ fn warm_start_gives_the_cold_start_solution() {
     let settings = BemSettings {
         gap_tol: 1e-9,
         max_iter: 5000,
+        ..BemSettings::default()
     };
     let p0 = 0.1e6;
     let at = |d: f64| Stack::new(layers(), d).unwrap();

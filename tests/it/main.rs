@@ -12,6 +12,7 @@ mod extreme;
 mod figures;
 mod fixtures;
 mod formats;
+mod free_boundary;
 mod fuzz;
 mod golden;
 mod hostile_batch;

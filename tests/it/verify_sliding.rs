@@ -33,6 +33,7 @@ fn tight() -> BemSettings {
     BemSettings {
         gap_tol: 1e-10,
         max_iter: 2000,
+        ..BemSettings::default()
     }
 }
 

@@ -24,6 +24,7 @@ fn tight() -> BemSettings {
     BemSettings {
         gap_tol: 1e-10,
         max_iter: 5000,
+        ..BemSettings::default()
     }
 }
 
