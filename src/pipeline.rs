@@ -404,16 +404,9 @@ fn stack_exact_check(
         });
     }
     let (spectrum, _) = scene.roughness.spectrum()?;
-    let boundary = BoundaryDecision::synthesised(opts.boundary);
-    let opts = &ExactOptions {
-        bem: BemSettings {
-            boundary: boundary.boundary,
-            ..opts.bem
-        },
-        ..*opts
-    };
+    let (boundary, opts) = synthesised(opts);
     let (verification, min_thickness, realisations) =
-        on_stack_realisations(&spectrum, &design, opts)?;
+        on_stack_realisations(&spectrum, &design, &opts)?;
     warnings.extend(unresolved_warning(&realisations.grid));
     Ok(StackExact {
         map: spectrum_source(scene),
@@ -471,16 +464,9 @@ fn exact_check(
         });
     }
     let (spectrum, _) = scene.roughness.spectrum()?;
-    let boundary = BoundaryDecision::synthesised(opts.boundary);
-    let opts = &ExactOptions {
-        bem: BemSettings {
-            boundary: boundary.boundary,
-            ..opts.bem
-        },
-        ..*opts
-    };
+    let (boundary, opts) = synthesised(opts);
     let (verification, min_thickness, realisations) =
-        on_realisations(&spectrum, &design, thickness, &outcome.evaluation, opts)?;
+        on_realisations(&spectrum, &design, thickness, &outcome.evaluation, &opts)?;
     warnings.extend(unresolved_warning(&realisations.grid));
     Ok(Exact {
         map: spectrum_source(scene),
@@ -489,6 +475,16 @@ fn exact_check(
         realisations: Some(realisations),
         boundary,
     })
+}
+
+/// The boundary of the solves on synthesised (periodic) realisations, and the options with it.
+fn synthesised(opts: &ExactOptions) -> (BoundaryDecision, ExactOptions) {
+    let boundary = BoundaryDecision::synthesised(opts.boundary);
+    let bem = BemSettings {
+        boundary: boundary.boundary,
+        ..opts.bem
+    };
+    (boundary, ExactOptions { bem, ..*opts })
 }
 
 /// The boundary of the exact solve on a map of edge mismatch `mismatch` and the solver settings
