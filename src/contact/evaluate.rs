@@ -374,10 +374,19 @@ fn g_at_nodes(
         let (j0, j1) = (2 * p, 2 * p + 1);
         let start = j0.saturating_sub(1).min(n.saturating_sub(3));
         let psi2 = if n >= 3 { 2.0 * f_dd[1][start] } else { 0.0 };
+        // The curvature terms of a panel's two nodes cancel in the sums (`Grid::interface_sum`
+        // takes their signed sum), but not the variation of ψ[u1, u2, u] across the panel: it
+        // differs from its mid-panel value by at most |ψ'''|·width/12, and ∫|(u − u1)(u − u2)|
+        // from the left end to either Gauss node is at most 3.3 times |∫(u − u1)(u − u2)|, so
+        // per node that part is at most 0.55·|ψ'''|·width times the leading term per unit ψ''
+        // (with ERR_SAFETY on ψ''' from divided differences); it goes with G's other errors.
+        let start3 = j0.saturating_sub(1).min(n.saturating_sub(4));
+        let psi3 = if n >= 4 { 6.0 * f_dd[2][start3] } else { 0.0 };
+        let drift = ERR_SAFETY * 0.55 * psi3.abs() * grid.width[p];
         for (jj, j) in [j0, j1].into_iter().enumerate() {
             g_node[j] =
                 cg * (g_left + grid.partial[p][jj][0] * f[j0] + grid.partial[p][jj][1] * f[j1]);
-            dp_cum[j] = cg * g_left_err;
+            dp_cum[j] = cg * (g_left_err + drift * grid.partial_curv[p][jj].abs());
             dp_part[j] = cg * psi2 * grid.partial_curv[p][jj];
         }
         g_left += grid.w[j0] * f[j0] + grid.w[j1] * f[j1];
