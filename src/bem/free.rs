@@ -50,7 +50,7 @@
 use super::fft::Fft2;
 use super::{
     BemSettings, BemSolution, Convergence, InterfaceFields, Surface, check_pressure, chunked,
-    chunked_ref, direction, measure_gap, project, solution, sum, warm_pressure,
+    direction, measure_gap, project, solution, step_denominator, warm_pressure,
 };
 use crate::error::Error;
 use crate::prec::Termination;
@@ -515,26 +515,14 @@ pub fn solve_free(
         }
         let tbar = sum_t / n_c;
         kernel.convolve(&mut plan, &t, &mut r, &mut pad, &mut out);
-        let den = sum(
-            &chunked_ref(&r, |o, rc| {
-                let mut den = 0.0;
-                for (ri, (ti, pi)) in rc.iter().zip(t[o..].iter().zip(&p[o..])) {
-                    if *pi > 0.0 {
-                        den += ri * (ti - tbar);
-                    }
-                }
-                [den]
-            }),
-            0,
-        );
-        if den.is_nan() || den <= 0.0 {
-            return Err(Error::Numerical {
-                what: "boundary-element contact (free boundaries)",
-                detail: format!(
-                    "conjugate-gradient step lost positivity at iteration {iterations}"
-                ),
-            });
-        }
+        let den = step_denominator(
+            "boundary-element contact (free boundaries)",
+            &r,
+            &t,
+            &p,
+            tbar,
+            iterations,
+        )?;
         let (total, _) = project(&mut p, 1.0, &t, &g, num / den);
         let scale = p0 * n as f64 / total;
         chunked(&mut p, |_, pc| {

@@ -596,29 +596,8 @@ where
         }
         let tbar = sum_t / n_c;
         convolve(&mut plan, &t, 1.0, &mut r);
-        // Σ_c (r − r̄) t = Σ_c r (t − t̄): the rigid-shift part of K t drops out.
-        let den = sum(
-            &chunked_ref(&r, |o, rc| {
-                let mut den = 0.0;
-                for (ri, (ti, pi)) in rc.iter().zip(t[o..].iter().zip(&p[o..])) {
-                    if *pi > 0.0 {
-                        den += ri * (ti - tbar);
-                    }
-                }
-                [den]
-            }),
-            0,
-        );
-        if den.is_nan() || den <= 0.0 {
-            return Err(Error::Numerical {
-                what: "boundary-element contact",
-                detail: format!(
-                    "conjugate-gradient step lost positivity at iteration {iterations} \
-                     (is the compliance positive?)"
-                ),
-            });
-        }
-        let step = num / den;
+        let step =
+            num / step_denominator("boundary-element contact", &r, &t, &p, tbar, iterations)?;
         let (total, changes) = project(&mut p, ps, &t, &g, step);
         let scale = p0 * n as f64 / total;
         ps = scale;
@@ -659,6 +638,40 @@ where
             status,
         },
     ))
+}
+
+/// The conjugate-gradient step's denominator Σ_c (r − r̄) t = Σ_c r (t − t̄) over the contact
+/// set (p > 0), in which the rigid-shift part of r = K t drops out; an error if it is not > 0.
+fn step_denominator(
+    what: &'static str,
+    r: &[f64],
+    t: &[f64],
+    p: &[f64],
+    tbar: f64,
+    iterations: usize,
+) -> Result<f64, Error> {
+    let den = sum(
+        &chunked_ref(r, |o, rc| {
+            let mut den = 0.0;
+            for (ri, (ti, pi)) in rc.iter().zip(t[o..].iter().zip(&p[o..])) {
+                if *pi > 0.0 {
+                    den += ri * (ti - tbar);
+                }
+            }
+            [den]
+        }),
+        0,
+    );
+    if den.is_nan() || den <= 0.0 {
+        return Err(Error::Numerical {
+            what,
+            detail: format!(
+                "conjugate-gradient step lost positivity at iteration {iterations} \
+                 (is the compliance positive?)"
+            ),
+        });
+    }
+    Ok(den)
 }
 
 /// g ← u − h − ḡ with ḡ the mean of u − h on the contact set (p > 0); returns Σ_c g², the
