@@ -28,7 +28,7 @@ of stack_ref.py; q z_N from 1e-8 to 1e4 (two points a decade), plus, for every i
 g_t,k changes sign, q at that zero (rounded to the nearest double) and at 1 +- 1e-6 times it.
 
 CSV row: N, then E_k, nu_k, d_k for k = 1..N, then E_s, nu_s, q, then g_t,k, f_t,k, h_k for
-k = 1..N (row length 3N + 3 + 3N). Moduli in Pa, lengths in m, q in 1/m.
+k = 1..N (row length 1 + 3N + 3 + 3N = 4 + 6N). Moduli in Pa, lengths in m, q in 1/m.
 
 Regenerate:  python3 tests/data/stack_tangential_ref.py > tests/data/stack_tangential_ref.csv
 """
