@@ -493,6 +493,41 @@ pub fn check_json(x: &Exact, outcome: &Outcome) -> Value {
     Value::Object(m)
 }
 
+/// The `min_thickness_*` keys of an `exact` object (a film's or a stack's): the exact d_min with
+/// its error and parts, its spread over realisations, its ratio to Persson's d_min `persson`, the
+/// check that sets it and the solves it took; null where the search did not run.
+pub(super) fn min_thickness_json(
+    m: &mut serde_json::Map<String, Value>,
+    min: Option<&ExactMinThickness>,
+    spread: Option<f64>,
+    persson: Option<f64>,
+) {
+    let d = min.and_then(ExactMinThickness::thickness);
+    m.insert("min_thickness_m".into(), json!(d.map(|d| d.value)));
+    m.insert("min_thickness_m_err".into(), json!(d.map(|d| d.err)));
+    m.insert(
+        "min_thickness_m_bracket_err".into(),
+        json!(min.and_then(|m| m.search.thickness).map(|d| d.err)),
+    );
+    m.insert(
+        "min_thickness_m_grid_err".into(),
+        json!(min.map(|m| m.grid_err)),
+    );
+    m.insert(
+        "min_thickness_m_spread".into(),
+        json!(spread.filter(|_| min.is_some())),
+    );
+    m.insert(
+        "min_thickness_m_ratio".into(),
+        json!(d.zip(persson).map(|(d, p)| d.value / p)),
+    );
+    m.insert(
+        "min_thickness_governing_check".into(),
+        json!(min.and_then(|m| m.search.governing).map(CheckKind::name)),
+    );
+    m.insert("min_thickness_solves".into(), json!(min.map(|m| m.solves)));
+}
+
 /// The exact result as a JSON value (`exact`): its verdict, the exact d_min with its error
 /// (bracket plus grid, each also apart) beside Persson's, A/A0 and the stress levels with
 /// their errors, their ratio to Persson's (`_ratio`) and, over realisations, their spread
@@ -517,36 +552,17 @@ pub fn exact_json(x: &Exact, outcome: &Outcome) -> Value {
         "unresolved_slope_share".into(),
         json!(r.map(|r| r.grid.unresolved_slope_share)),
     );
-    let min = x.min_thickness.as_ref();
-    let d = min.and_then(ExactMinThickness::thickness);
-    m.insert("min_thickness_m".into(), json!(d.map(|d| d.value)));
-    m.insert("min_thickness_m_err".into(), json!(d.map(|d| d.err)));
-    m.insert(
-        "min_thickness_m_bracket_err".into(),
-        json!(min.and_then(|m| m.search.thickness).map(|d| d.err)),
-    );
-    m.insert(
-        "min_thickness_m_grid_err".into(),
-        json!(min.map(|m| m.grid_err)),
-    );
-    m.insert(
-        "min_thickness_m_spread".into(),
-        json!(r.map(|r| r.min_thickness_spread).filter(|_| min.is_some())),
-    );
-    let persson_d = outcome
+    let persson = outcome
         .min_thickness
         .as_ref()
         .and_then(|p| p.thickness)
         .map(|p| p.value);
-    m.insert(
-        "min_thickness_m_ratio".into(),
-        json!(d.zip(persson_d).map(|(d, p)| d.value / p)),
+    min_thickness_json(
+        &mut m,
+        x.min_thickness.as_ref(),
+        r.map(|r| r.min_thickness_spread),
+        persson,
     );
-    m.insert(
-        "min_thickness_governing_check".into(),
-        json!(min.and_then(|m| m.search.governing).map(CheckKind::name)),
-    );
-    m.insert("min_thickness_solves".into(), json!(min.map(|m| m.solves)));
     for row in check_rows(ev, v) {
         let (key, p, e) = (row.key, row.persson, row.exact);
         m.insert(key.into(), json!(e.value));

@@ -15,13 +15,14 @@
 //! `persson_` beside it, then `bond_strength_pa`, `sigma_max_pa`, `tau_max_pa`, the field
 //! statistics and `peaks_resolved`), the checks with `at`, the solver and the exact verdict.
 
-use super::verify::{exact_check_json, min_thickness_line, solver_json, stats_json};
+use super::verify::{
+    exact_check_json, min_thickness_json, min_thickness_line, solver_json, stats_json,
+};
 use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
 use crate::bem::{BemSolution, InterfaceFields, Surface};
 use crate::check::CheckKind;
 use crate::check::stack::StackOutcome;
 use crate::error::Error;
-use crate::exact::min_thickness::ExactMinThickness;
 use crate::layer::stack::Stack;
 use crate::pipeline::StackExact;
 use crate::prec::Estimate;
@@ -637,37 +638,18 @@ pub fn exact_json(x: &StackExact, o: &StackOutcome) -> Value {
         "unresolved_slope_share".into(),
         json!(r.map(|r| r.grid.unresolved_slope_share)),
     );
-    let min = x.min_thickness.as_ref();
-    let d = min.and_then(ExactMinThickness::thickness);
     m.insert("thickness_of".into(), json!(thickness_of(o)));
-    m.insert("min_thickness_m".into(), json!(d.map(|d| d.value)));
-    m.insert("min_thickness_m_err".into(), json!(d.map(|d| d.err)));
-    m.insert(
-        "min_thickness_m_bracket_err".into(),
-        json!(min.and_then(|m| m.search.thickness).map(|d| d.err)),
-    );
-    m.insert(
-        "min_thickness_m_grid_err".into(),
-        json!(min.map(|m| m.grid_err)),
-    );
-    m.insert(
-        "min_thickness_m_spread".into(),
-        json!(r.map(|r| r.min_thickness_spread).filter(|_| min.is_some())),
-    );
-    let persson_d = o
+    let persson = o
         .min_thickness
         .as_ref()
         .and_then(|p| p.thickness)
         .map(|p| p.value);
-    m.insert(
-        "min_thickness_m_ratio".into(),
-        json!(d.zip(persson_d).map(|(d, p)| d.value / p)),
+    min_thickness_json(
+        &mut m,
+        x.min_thickness.as_ref(),
+        r.map(|r| r.min_thickness_spread),
+        persson,
     );
-    m.insert(
-        "min_thickness_governing_check".into(),
-        json!(min.and_then(|m| m.search.governing).map(CheckKind::name)),
-    );
-    m.insert("min_thickness_solves".into(), json!(min.map(|m| m.solves)));
     put_exact_rows(&mut m, top_rows(o, v), |key| {
         r.and_then(|r| r.top_spread(key))
     });
