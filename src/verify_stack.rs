@@ -13,6 +13,11 @@
 //! at half and a quarter of the resolution) are those of [`crate::verify`]. Every interface also carries the
 //! statistics of its fields at full resolution (σ_n and |τ|: mean, rms, quantiles, maximum).
 //!
+//! Under sliding friction ([`sliding`]: the traction μ·p(x) along x through every interface's
+//! tangential kernels) the levels, σ_rms, the bond exceedance and the field statistics are
+//! those of the total fields, τ_rms stays the pressure-driven shear's, and every interface
+//! carries its shear vector.
+//!
 //! [`compare`] puts the exact contact beside Persson's theory on the stack
 //! ([`crate::contact::StackContact`]) evaluated on the map's own spectrum, for
 //! `coatcheck verify --layer`: the top surface's quantities, then every interface's.
