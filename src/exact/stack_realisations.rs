@@ -35,7 +35,8 @@ pub struct StackRealisations {
     /// `mean_contact_pressure_pa`, `sigma_rms_top_pa`).
     pub top: Vec<(&'static str, f64)>,
     /// The spread of every interface's numbers (top first), by report key (`sigma_rms_pa`,
-    /// `tau_rms_pa`, `tau_peak_pa`, `sigma_peak_pa`, `bond_exceedance`).
+    /// `tau_rms_pa`, `tau_peak_pa`, `sigma_peak_pa`, `bond_exceedance`; under sliding friction
+    /// also those of [`SLIDING_KEYS`]).
     pub interfaces: Vec<Vec<(&'static str, f64)>>,
     /// The spread of the exact d_min (NaN when it was not searched or some realisation has no
     /// passing thickness).
@@ -75,6 +76,18 @@ pub const INTERFACE_KEYS: [Keyed<InterfaceExact>; 5] = [
     ("tau_peak_pa", |i| i.tau_peak.value),
     ("sigma_peak_pa", |i| i.sigma_peak.value),
     ("bond_exceedance", |i| i.bond_exceedance),
+];
+
+/// An interface's shear-vector numbers under sliding friction by report key.
+pub const SLIDING_KEYS: [Keyed<SlidingVerification>; 8] = [
+    ("mean_interface_shear_pa", |s| s.mean_x),
+    ("mean_interface_shear_y_pa", |s| s.mean_y),
+    ("tau_x_rms_interface_pa", |s| s.tau_x_rms),
+    ("tau_y_rms_interface_pa", |s| s.tau_y_rms),
+    ("tau_abs_q50_pa", |s| s.quantiles[0]),
+    ("tau_abs_q99_pa", |s| s.quantiles[1]),
+    ("tau_abs_q999_pa", |s| s.quantiles[2]),
+    ("tau_abs_max_pa", |s| s.max),
 ];
 
 /// The mean of estimates: mean value, mean (grid) error, the worst status.
@@ -222,10 +235,22 @@ pub fn on_stack_realisations(
         .collect();
     let interfaces = (0..mean.interfaces.len())
         .map(|k| {
-            INTERFACE_KEYS
+            let mut keyed: Vec<(&'static str, f64)> = INTERFACE_KEYS
                 .iter()
                 .map(|&(key, f)| (key, spread_of(&|v| f(&v.interfaces[k]).value)))
-                .collect()
+                .collect();
+            if mean.interfaces[k].sliding.is_some() {
+                keyed.extend(SLIDING_KEYS.iter().map(|&(key, f)| {
+                    let of = |v: &StackVerification| {
+                        v.interfaces[k]
+                            .sliding
+                            .as_ref()
+                            .map_or(f64::NAN, |s| f(s).value)
+                    };
+                    (key, spread_of(&of))
+                }));
+            }
+            keyed
         })
         .collect();
     let (m, min_thickness_spread) = if ms.is_empty() {

@@ -742,7 +742,9 @@ pub fn exact_json(x: &StackExact, o: &StackOutcome) -> Value {
                 r.and_then(|r| r.interface_spread(k, key))
             });
             if let Some(sl) = &i.sliding {
-                let sliding = sliding_object(sl, |m, rows| put_exact_rows(m, rows, |_| None));
+                let sliding = sliding_object(sl, |m, rows| {
+                    put_exact_rows(m, rows, |key| r.and_then(|r| r.interface_spread(k, key)))
+                });
                 e.insert("sliding".into(), sliding);
             }
             Value::Object(e)

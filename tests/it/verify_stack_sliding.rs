@@ -488,11 +488,12 @@ fn stack_sliding_outputs_follow_their_schemas() {
 
 /// A one-layer stack given by its spectrum alone under friction gives the film's realisation
 /// output on the same seeds: the mean shear vector's numbers with their grid errors (1e-12
-/// relative, 1e-9 for the errors) and the mean levels they set.
+/// relative, 1e-9 for the errors), their spreads over the realisations (1e-9; the means' spreads
+/// rounding-level, 1e-13 of μ p0 absolute) and the mean levels they set.
 #[test]
 fn one_layer_stack_realisations_under_friction_are_the_films() {
     use coatcheck::check::Checker;
-    use coatcheck::exact::stack_realisations::on_stack_realisations;
+    use coatcheck::exact::stack_realisations::{SLIDING_KEYS, on_stack_realisations};
     use coatcheck::exact::{ExactOptions, on_realisations};
     use coatcheck::psd::Spectrum;
     let spectrum = Spectrum::self_affine(0.8, 1e5, 3.2e6, None)
@@ -525,12 +526,12 @@ fn one_layer_stack_realisations_under_friction_are_the_films() {
         .unwrap()
         .evaluate(d)
         .unwrap();
-    let (wv, _, _) = on_realisations(&spectrum, &film, d, &persson, &opts).unwrap();
+    let (wv, _, wr) = on_realisations(&spectrum, &film, d, &persson, &opts).unwrap();
     let mut one = design(vec![layer("rubber", 2e6, 0.5, d, 0.15e6)], 0.1e6, 1e-2);
     one.substrate = el(200e9, 0.3);
     one.yield_strength = Some(1e12);
     one.criteria = criteria;
-    let (gv, gm, _) = on_stack_realisations(&spectrum, &one, mu, &opts).unwrap();
+    let (gv, gm, gr) = on_stack_realisations(&spectrum, &one, mu, &opts).unwrap();
     assert!(gm.is_none());
     let (g, w) = (&gv.interfaces[0], &wv);
     let (gs, ws) = (g.sliding.as_ref().unwrap(), w.sliding.as_ref().unwrap());
@@ -545,6 +546,19 @@ fn one_layer_stack_realisations_under_friction_are_the_films() {
     for (a, b, what) in pairs {
         close(a.value, b.value, 1e-12, what);
         close(a.err, b.err, 1e-9, &format!("{what} err"));
+    }
+    // The spreads of the shear vector's numbers over the realisations, by report key.
+    for (key, _) in SLIDING_KEYS {
+        let (s, t) = (
+            gr.interface_spread(0, key).unwrap(),
+            wr.spread_of(key).unwrap(),
+        );
+        if key == "mean_interface_shear_y_pa" || key == "mean_interface_shear_pa" {
+            assert!((s - t).abs() <= 1e-13 * mu * 0.1e6, "{key}: {s:e} vs {t:e}");
+        } else {
+            assert!(s > 0.0, "{key}");
+            close(s, t, 1e-9, &format!("{key} spread"));
+        }
     }
     assert_eq!(gv.pass, wv.pass);
 }
