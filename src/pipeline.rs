@@ -239,10 +239,7 @@ pub fn checker(scene: &Scene) -> Result<(Checker, Vec<String>), Error> {
 
 /// The checker of a layer-stack scene with one roughness file, and its reader's warnings.
 pub fn stack_checker(scene: &Scene) -> Result<(StackChecker, Vec<String>), Error> {
-    let refused = [
-        ("load.friction (sliding)", scene.friction > 0.0),
-        ("criteria.shear_tail", scene.criteria.shear_tail.is_some()),
-    ];
+    let refused = [("criteria.shear_tail", scene.criteria.shear_tail.is_some())];
     if let Some((what, _)) = refused.iter().find(|(_, on)| *on) {
         return Err(Error::Value {
             origin: origin(scene),
@@ -394,7 +391,8 @@ fn stack_exact_check(
     if let RoughnessSource::Profile { path } = &scene.roughness.source {
         let (surface, mismatch) = scene_map(path)?;
         let (boundary, bem) = map_boundary(opts, path, mismatch, warnings);
-        let (verification, min_thickness) = on_stack_surface(&surface, &design, &bem)?;
+        let (verification, min_thickness) =
+            on_stack_surface(&surface, &design, scene.friction, &bem)?;
         return Ok(StackExact {
             map: path.clone(),
             verification,
@@ -406,7 +404,7 @@ fn stack_exact_check(
     let (spectrum, _) = scene.roughness.spectrum()?;
     let (boundary, opts) = synthesised(opts);
     let (verification, min_thickness, realisations) =
-        on_stack_realisations(&spectrum, &design, &opts)?;
+        on_stack_realisations(&spectrum, &design, scene.friction, &opts)?;
     warnings.extend(unresolved_warning(&realisations.grid));
     Ok(StackExact {
         map: spectrum_source(scene),

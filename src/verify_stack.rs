@@ -13,6 +13,11 @@
 //! at half and a quarter of the resolution) are those of [`crate::verify`]. Every interface also carries the
 //! statistics of its fields at full resolution (σ_n and |τ|: mean, rms, quantiles, maximum).
 //!
+//! Under sliding friction ([`sliding`]: the traction μ·p(x) along x through every interface's
+//! tangential kernels) the levels, σ_rms, the bond exceedance and the field statistics are
+//! those of the total fields, τ_rms stays the pressure-driven shear's, and every interface
+//! carries its shear vector.
+//!
 //! [`compare`] puts the exact contact beside Persson's theory on the stack
 //! ([`crate::contact::StackContact`]) evaluated on the map's own spectrum, for
 //! `coatcheck verify --layer`: the top surface's quantities, then every interface's.
@@ -28,10 +33,13 @@ use crate::error::Error;
 use crate::layer::stack::{Layer, Stack};
 use crate::prec::{Estimate, Settings, Termination};
 use crate::topography::HeightMap;
+use crate::verify::sliding::{ExactSliding, SlidingVerification};
 use crate::verify::{
     ExactCheck, Level, Row, converged, exact_only, level, map_spectrum, shear_rows,
 };
 use serde::Serialize;
+
+pub mod sliding;
 
 /// The exact fields at one interface of a stack.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -42,7 +50,7 @@ pub struct InterfaceExact {
     pub depth: f64,
     /// Rms deviation of σ_n at z_k (Pa).
     pub sigma_rms: Estimate,
-    /// Rms of |τ| at z_k (Pa).
+    /// Rms of |τ| at z_k (Pa); under sliding, of the static (pressure-driven) shear.
     pub tau_rms: Estimate,
     /// ε-level of |τ| at z_k.
     pub tau_peak: Level,
@@ -56,6 +64,9 @@ pub struct InterfaceExact {
     pub normal: FieldStats,
     /// |τ| over the interface at full resolution (Pa).
     pub shear: FieldStats,
+    /// Under sliding friction: the interface shear vector ([`sliding`]). The levels, σ_rms, the
+    /// bond exceedance and the field statistics above are then those of the total fields.
+    pub sliding: Option<SlidingVerification>,
 }
 
 /// One exact check with the interface it concerns (a layer's name, or `substrate`).
@@ -127,6 +138,8 @@ pub(crate) struct SolvedInterface {
     resolved: bool,
     normal: FieldStats,
     shear: FieldStats,
+    /// Under sliding: the shear vector's summary and the |τ| statistics.
+    sliding: Option<(ExactSliding, FieldStats)>,
 }
 
 /// The numbers of one solve.
@@ -154,32 +167,36 @@ pub fn design_stack(design: &StackDesign) -> Result<Stack, Error> {
     Stack::new(layers, design.substrate)
 }
 
-/// One solve of `design` on `stack` (warm-started from `start` when given) and its numbers.
+/// One solve of `design` on `stack` (warm-started from `start` when given) and its numbers,
+/// under the sliding friction `mu` (0: static contact; [`sliding`]).
 pub(crate) fn solve_one(
     surface: &Surface,
     stack: &Stack,
-    design: &StackDesign,
+    (design, mu): (&StackDesign, f64),
     settings: &BemSettings,
     start: Option<&[f64]>,
 ) -> Result<Solved, Error> {
     let p0 = design.pressure;
     let (sol, fields) = solve_warm(surface, stack, p0, settings, start)?;
     let eps = design.criteria.epsilon;
-    let interfaces = fields
+    let interfaces = sliding::with_friction(&sol, stack, fields, mu)?
         .into_iter()
         .zip(&design.layers)
-        .map(|(f, layer)| {
+        .map(|((f, summary), layer)| {
             let mut tau: Vec<f64> = (0..f.shear_x.len()).map(|i| f.shear_magnitude(i)).collect();
             let (tau_level, resolved) = level(&mut tau, eps);
             let mut normal = f.normal.clone();
             let (sigma_level, _) = level(&mut normal, eps);
             SolvedInterface {
                 sigma_rms: f.normal_stats.rms_dev,
-                tau_rms: f.shear_stats.rms,
+                tau_rms: summary
+                    .as_ref()
+                    .map_or(f.shear_stats.rms, |s| s.static_tau_rms),
                 tau_level,
                 sigma_level,
                 bond_fraction: f.shear_fraction_above(layer.bond_strength),
                 resolved,
+                sliding: summary.map(|s| (s, f.shear_stats.clone())),
                 normal: f.normal_stats,
                 shear: f.shear_stats,
             }
@@ -233,6 +250,10 @@ pub(crate) fn interface(
         },
         bond_strength: layer.bond_strength,
         bond_exceedance: est(|s| s.bond_fraction),
+        sliding: fine.sliding.as_ref().map(|(s, t)| {
+            let half = coarse.and_then(|c| c.sliding.as_ref());
+            SlidingVerification::of((s, t), half.map(|(s, t)| (s, t)))
+        }),
         normal: fine.normal,
         shear: fine.shear,
     }
@@ -288,18 +309,21 @@ pub(crate) fn judge(
     checks
 }
 
-/// Solve the stack design at its layers' thicknesses on `surface` and judge the enabled stress
-/// checks at every interface.
+/// Solve the stack design at its layers' thicknesses on `surface` under the sliding friction
+/// `mu` (0: static contact) and judge the enabled stress checks at every interface (under
+/// sliding on the total fields).
 pub fn verify(
     surface: &Surface,
     design: &StackDesign,
+    mu: f64,
     settings: &BemSettings,
 ) -> Result<StackVerification, Error> {
     let started = std::time::Instant::now();
     let stack = design_stack(design)?;
-    let fine = solve_one(surface, &stack, design, settings, None)?;
-    let (coarse, quarter) =
-        crate::verify::coarser(surface, |s| solve_one(s, &stack, design, settings, None))?;
+    let fine = solve_one(surface, &stack, (design, mu), settings, None)?;
+    let (coarse, quarter) = crate::verify::coarser(surface, |s| {
+        solve_one(s, &stack, (design, mu), settings, None)
+    })?;
     let top = |f: fn(&Solved) -> f64, floor| {
         estimate(
             f(&fine),

@@ -32,11 +32,32 @@ pub struct FrictionFields {
 /// `pressure` (Pa, compression positive, row-major `ny × nx`, pixel sizes `dx`, `dy`).
 pub fn friction_fields(
     pressure: &[f64],
-    (nx, ny): (usize, usize),
-    (dx, dy): (f64, f64),
+    dims: (usize, usize),
+    pixel: (f64, f64),
     stack: &Stack,
     mu: f64,
 ) -> Result<FrictionFields, Error> {
+    let (layers, d) = (stack.layers, stack.thickness);
+    friction_fields_with(pressure, dims, pixel, mu, |q| {
+        let t = layers.tangential(q * d);
+        [t.g_t, t.f_t, t.h]
+    })
+}
+
+/// The interface stresses of the traction μ p along x on the top surface at an interface whose
+/// kernels at wavenumber q > 0 (1/m) are `kernels(q) = [g_t, f_t, h]` (module doc), for the
+/// pressure field `pressure` (Pa, compression positive, row-major `ny × nx`, pixel sizes `dx`,
+/// `dy`).
+pub fn friction_fields_with<K>(
+    pressure: &[f64],
+    (nx, ny): (usize, usize),
+    (dx, dy): (f64, f64),
+    mu: f64,
+    kernels: K,
+) -> Result<FrictionFields, Error>
+where
+    K: Fn(f64) -> [f64; 3] + Sync,
+{
     if !(mu.is_finite() && mu >= 0.0) {
         return Err(Error::invalid(
             "friction coefficient",
@@ -46,7 +67,6 @@ pub fn friction_fields(
     }
     let n = nx * ny;
     let (qx, qy) = wavenumbers(nx, ny, dx, dy);
-    let (layers, d) = (stack.layers, stack.thickness);
     let nxc = nx / 2 + 1;
     // (g_t cos²φ + h sin²φ, (g_t − h) cos φ sin φ, f_t cos φ) per half-spectrum entry.
     let mut mult = vec![[0.0; 3]; nxc * ny];
@@ -56,13 +76,9 @@ pub fn friction_fields(
             *m = if q == 0.0 {
                 [1.0, 0.0, 0.0]
             } else {
-                let t = layers.tangential(q * d);
+                let [g_t, f_t, h] = kernels(q);
                 let (c, s) = (qx[kx] / q, qy[ky] / q);
-                [
-                    t.g_t * c * c + t.h * s * s,
-                    (t.g_t - t.h) * c * s,
-                    t.f_t * c,
-                ]
+                [g_t * c * c + h * s * s, (g_t - h) * c * s, f_t * c]
             };
         }
     });

@@ -231,12 +231,6 @@ pub(super) fn inputs(a: &VerifyArgs) -> Result<Inputs, Error> {
 /// Run `coatcheck verify`; returns the exit code or an error (exit code 2).
 pub fn run(a: VerifyArgs) -> Result<i32, Error> {
     if !a.layer.is_empty() {
-        if a.friction.is_some() {
-            return Err(Error::Value {
-                origin: "--friction".into(),
-                msg: "not available for a layer stack (--layer)".into(),
-            });
-        }
         return super::verify_stack::run(&a);
     }
     const CLAP: &str = "clap requires --film and --thickness without --layer";

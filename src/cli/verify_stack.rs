@@ -1,6 +1,7 @@
 //! `coatcheck verify MAP.csv --layer E,nu,d [--layer …] --substrate E,nu --pressure P`: the exact
 //! contact on a layer stack (top first) beside Persson's theory on the stack from the map's
-//! spectrum, at the top surface and at every interface.
+//! spectrum, at the top surface and at every interface; with `--friction μ` under sliding
+//! ([`coatcheck::verify_stack::sliding`]): every interface's shear vector beside Persson's.
 //!
 //! Arguments to [`coatcheck::verify_stack::compare`]; the output is
 //! [`coatcheck::report::verify_stack`]'s. Exit codes: 0 done (and no pixel's |τ| above
@@ -14,10 +15,14 @@ use coatcheck::layer::stack::Stack;
 use coatcheck::prec::Settings;
 use coatcheck::report::{
     self,
-    verify_stack::{StackVerifyInputs, verify_csv, verify_json, verify_table, write_fields},
+    verify_stack::{
+        StackVerifyInputs, add_sliding_json, sliding_note, verify_csv, verify_json, verify_table,
+        write_fields,
+    },
 };
 use coatcheck::scene::Key;
 use coatcheck::verify_stack::compare;
+use coatcheck::verify_stack::sliding::compare_sliding;
 
 /// Run `coatcheck verify --layer …`; returns the exit code or an error (exit code 2).
 pub fn run(a: &VerifyArgs) -> Result<i32, Error> {
@@ -33,11 +38,19 @@ pub fn run(a: &VerifyArgs) -> Result<i32, Error> {
         bond,
         settings,
         rtol,
+        mu,
         map,
         boundary,
-        ..
     } = inputs(a)?;
-    let c = compare(&map, &stack, p0, &settings, Settings { rtol }, bond)?;
+    let (c, sliding) = if mu > 0.0 {
+        let s = compare_sliding(&map, &stack, (p0, mu), &settings, Settings { rtol }, bond)?;
+        (s.comparison, Some((s.exact, s.persson)))
+    } else {
+        (
+            compare(&map, &stack, p0, &settings, Settings { rtol }, bond)?,
+            None,
+        )
+    };
     if let Some(path) = &a.fields {
         write_fields(path, &c.surface, &c.solution, &c.fields)?;
     }
@@ -52,16 +65,22 @@ pub fn run(a: &VerifyArgs) -> Result<i32, Error> {
         bond,
         boundary,
     };
-    let table = verify_table(&inputs, &c);
+    let mut table = verify_table(&inputs, &c);
+    if sliding.is_some() {
+        table += &sliding_note(mu);
+    }
     report::stdout(&match a.format {
         FormatArg::Table => table,
         FormatArg::Json => {
             // JSON shows NaN as null: the table of the same numbers is checked instead.
             report::finite_only(&table)?;
+            let mut v = verify_json(&inputs, &c);
+            if let Some((exact, persson)) = &sliding {
+                add_sliding_json(&mut v, exact, persson);
+            }
             format!(
                 "{}\n",
-                serde_json::to_string_pretty(&verify_json(&inputs, &c))
-                    .expect("a JSON value serialises")
+                serde_json::to_string_pretty(&v).expect("a JSON value serialises")
             )
         }
         FormatArg::Csv => verify_csv(&inputs, &c),

@@ -8,7 +8,7 @@
 //! The utilisation at d is the largest value/limit of the enabled exact stress checks of the
 //! stack: bond-shear at every interface against its own bond, substrate-yield at the bottom (the
 //! ε-levels of the solved fields and the mean contact pressure), as [`crate::verify_stack`]
-//! judges them. The scan range is the film's (q_L·d from 10 down, the bulk bound 50/q_L); why it
+//! judges them; under sliding friction on the total fields (static plus friction-driven). The scan range is the film's (q_L·d from 10 down, the bulk bound 50/q_L); why it
 //! holds for a layer below the top is argued in [`crate::check::stack`].
 
 use super::min_thickness::{ExactMinThickness, min_thickness_with, utilisation};
@@ -30,17 +30,18 @@ pub fn at_thickness(design: &StackDesign, d: f64) -> StackDesign {
 }
 
 /// The exact utilisation of the stack design with the layer `thickness_of` at `thickness` on
-/// `surface`, warm-started from `start`, with the solved pressure and the solver's iterations.
+/// `surface` under the sliding friction `mu` (0: static contact), warm-started from `start`,
+/// with the solved pressure and the solver's iterations.
 pub fn exact_utilisation(
     surface: &Surface,
-    design: &StackDesign,
+    (design, mu): (&StackDesign, f64),
     settings: &BemSettings,
     thickness: f64,
     start: Option<&[f64]>,
 ) -> Result<(Utilisation, Vec<f64>, usize), Error> {
     let design = at_thickness(design, thickness);
     let stack = design_stack(&design)?;
-    let s = solve_one(surface, &stack, &design, settings, start)?;
+    let s = solve_one(surface, &stack, (&design, mu), settings, start)?;
     let depths = stack.depths();
     let interfaces: Vec<InterfaceExact> = s
         .interfaces
@@ -56,15 +57,16 @@ pub fn exact_utilisation(
     Ok((u, s.pressure, s.convergence.iterations))
 }
 
-/// The exact minimum thickness of the layer `thickness_of` on `surface`, with its bracket and
-/// grid errors (module docs).
+/// The exact minimum thickness of the layer `thickness_of` on `surface` under the sliding
+/// friction `mu` (0: static contact), with its bracket and grid errors (module docs).
 pub fn min_thickness(
     surface: &Surface,
     design: &StackDesign,
+    mu: f64,
     settings: &BemSettings,
 ) -> Result<ExactMinThickness, Error> {
     min_thickness_with(surface, &mut |s, d, start| {
-        exact_utilisation(s, design, settings, d, start)
+        exact_utilisation(s, (design, mu), settings, d, start)
     })
 }
 

@@ -6,7 +6,7 @@
 //! (the mean of the realisations' half-resolution differences), as for a film.
 //!
 //! The field statistics of an interface (σ_n and |τ|: mean, rms, quantiles, maximum) are the
-//! means of the realisations' statistics. The stress checks are judged on the mean levels, the
+//! means of the realisations' statistics, and so are its sliding numbers under friction. The stress checks are judged on the mean levels, the
 //! minimum thickness is the mean of the realisations' d_min
 //! ([`super::realisations::mean_min_thickness`]).
 
@@ -20,6 +20,7 @@ use crate::error::Error;
 use crate::prec::{Estimate, Termination};
 use crate::psd::Spectrum;
 use crate::verify::Level;
+use crate::verify::sliding::SlidingVerification;
 use crate::verify_stack::{InterfaceExact, StackVerification, judge};
 
 /// The realisations behind the exact check of a stack's spectrum.
@@ -34,7 +35,8 @@ pub struct StackRealisations {
     /// `mean_contact_pressure_pa`, `sigma_rms_top_pa`).
     pub top: Vec<(&'static str, f64)>,
     /// The spread of every interface's numbers (top first), by report key (`sigma_rms_pa`,
-    /// `tau_rms_pa`, `tau_peak_pa`, `sigma_peak_pa`, `bond_exceedance`).
+    /// `tau_rms_pa`, `tau_peak_pa`, `sigma_peak_pa`, `bond_exceedance`; under sliding friction
+    /// also those of [`SLIDING_KEYS`]).
     pub interfaces: Vec<Vec<(&'static str, f64)>>,
     /// The spread of the exact d_min (NaN when it was not searched or some realisation has no
     /// passing thickness).
@@ -74,6 +76,18 @@ pub const INTERFACE_KEYS: [Keyed<InterfaceExact>; 5] = [
     ("tau_peak_pa", |i| i.tau_peak.value),
     ("sigma_peak_pa", |i| i.sigma_peak.value),
     ("bond_exceedance", |i| i.bond_exceedance),
+];
+
+/// An interface's shear-vector numbers under sliding friction by report key.
+pub const SLIDING_KEYS: [Keyed<SlidingVerification>; 8] = [
+    ("mean_interface_shear_pa", |s| s.mean_x),
+    ("mean_interface_shear_y_pa", |s| s.mean_y),
+    ("tau_x_rms_interface_pa", |s| s.tau_x_rms),
+    ("tau_y_rms_interface_pa", |s| s.tau_y_rms),
+    ("tau_abs_q50_pa", |s| s.quantiles[0]),
+    ("tau_abs_q99_pa", |s| s.quantiles[1]),
+    ("tau_abs_q999_pa", |s| s.quantiles[2]),
+    ("tau_abs_max_pa", |s| s.max),
 ];
 
 /// The mean of estimates: mean value, mean (grid) error, the worst status.
@@ -128,6 +142,29 @@ fn mean_interface(vs: &[StackVerification], k: usize) -> InterfaceExact {
         bond_exceedance: est(|i| i.bond_exceedance),
         normal: mean_stats(&all.iter().map(|i| &i.normal).collect::<Vec<_>>()),
         shear: mean_stats(&all.iter().map(|i| &i.shear).collect::<Vec<_>>()),
+        sliding: first.sliding.as_ref().map(|s| {
+            let slid: Vec<&SlidingVerification> =
+                all.iter().filter_map(|i| i.sliding.as_ref()).collect();
+            mean_sliding(s.friction, &slid)
+        }),
+    }
+}
+
+/// The realisations' sliding numbers of one interface averaged as the others are.
+fn mean_sliding(friction: f64, all: &[&SlidingVerification]) -> SlidingVerification {
+    let est = |f: fn(&SlidingVerification) -> Estimate| mean_of(all.iter().map(|s| f(s)));
+    SlidingVerification {
+        friction,
+        mean_x: est(|s| s.mean_x),
+        mean_y: est(|s| s.mean_y),
+        tau_x_rms: est(|s| s.tau_x_rms),
+        tau_y_rms: est(|s| s.tau_y_rms),
+        quantiles: [
+            est(|s| s.quantiles[0]),
+            est(|s| s.quantiles[1]),
+            est(|s| s.quantiles[2]),
+        ],
+        max: est(|s| s.max),
     }
 }
 
@@ -165,10 +202,11 @@ pub fn mean_stack_verification(
 }
 
 /// The exact check of a stack design on `opts.realisations` random-phase realisations of
-/// `spectrum` (module docs).
+/// `spectrum` under the sliding friction `mu` (0: static contact; module docs).
 pub fn on_stack_realisations(
     spectrum: &Spectrum,
     design: &StackDesign,
+    mu: f64,
     opts: &ExactOptions,
 ) -> Result<
     (
@@ -184,7 +222,7 @@ pub fn on_stack_realisations(
     let mut ms = Vec::new();
     for &seed in &seeds {
         let surface = realisation(spectrum, &grid, seed)?;
-        let (v, m) = on_stack_surface(&surface, design, &opts.bem)?;
+        let (v, m) = on_stack_surface(&surface, design, mu, &opts.bem)?;
         vs.push(v);
         ms.extend(m);
     }
@@ -197,10 +235,22 @@ pub fn on_stack_realisations(
         .collect();
     let interfaces = (0..mean.interfaces.len())
         .map(|k| {
-            INTERFACE_KEYS
+            let mut keyed: Vec<(&'static str, f64)> = INTERFACE_KEYS
                 .iter()
                 .map(|&(key, f)| (key, spread_of(&|v| f(&v.interfaces[k]).value)))
-                .collect()
+                .collect();
+            if mean.interfaces[k].sliding.is_some() {
+                keyed.extend(SLIDING_KEYS.iter().map(|&(key, f)| {
+                    let of = |v: &StackVerification| {
+                        v.interfaces[k]
+                            .sliding
+                            .as_ref()
+                            .map_or(f64::NAN, |s| f(s).value)
+                    };
+                    (key, spread_of(&of))
+                }));
+            }
+            keyed
         })
         .collect();
     let (m, min_thickness_spread) = if ms.is_empty() {

@@ -7,27 +7,31 @@
 //! `interface_shear_abs_pa`, `shear_fraction_above_bond`) those of the bottom interface, as the
 //! stack check does; `comparison` the top surface's rows then the bottom interface's; `layers`
 //! (top first) and `interfaces`, each with `name`, `depth_m`, its field statistics and its own
-//! `comparison`.
+//! `comparison`. With `--friction` every interface also carries the film's `sliding` object and
+//! the top-level `sliding` is the bottom interface's.
 //!
 //! The `check --verify` section (`check.schema.json`, `verify`): the film's keys for the top
 //! surface and the contact, `interfaces` like the check's (`name`, `depth_m`, `sigma_rms_pa`,
 //! `tau_rms_pa`, `tau_peak_pa`, `sigma_peak_pa`, `bond_exceedance`, each with `_err` and
 //! `persson_` beside it, then `bond_strength_pa`, `sigma_max_pa`, `tau_max_pa`, the field
-//! statistics and `peaks_resolved`), the checks with `at`, the solver and the exact verdict.
+//! statistics and `peaks_resolved`; under sliding friction a `sliding` object with the shear
+//! vector's keys), the checks with `at`, the solver and the exact verdict.
 
 use super::verify::{
-    exact_check_json, min_thickness_json, min_thickness_line, solver_json, stats_json,
+    exact_check_json, min_thickness_json, min_thickness_line, sliding_json, solver_json, stats_json,
 };
 use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
 use crate::bem::{BemSolution, InterfaceFields, Surface};
 use crate::check::CheckKind;
 use crate::check::stack::StackOutcome;
+use crate::contact::SlidingShear;
 use crate::error::Error;
 use crate::layer::stack::Stack;
 use crate::pipeline::StackExact;
 use crate::prec::Estimate;
 use crate::verify::Row;
 use crate::verify::boundary::BoundaryDecision;
+use crate::verify::sliding::{ExactSliding, SlidingVerification};
 use crate::verify_stack::{StackComparison, StackVerification};
 use serde_json::{Map, Value, json};
 use std::io::Write;
@@ -217,6 +221,40 @@ pub fn verify_json(i: &StackVerifyInputs, c: &StackComparison) -> Value {
     })
 }
 
+/// `coatcheck verify --layer --friction μ`'s note below the tables.
+pub fn sliding_note(mu: f64) -> String {
+    let mut out = wrap(&format!(
+        "sliding friction mu = {mu}: the traction mu p(x) along x is applied to the solved \
+         frictionless pressure (uncoupled approximation: the friction does not change the \
+         contact; the normal-tangential coupling it neglects is not computed for a stack). At \
+         every interface the fields, sigma_rms interface and |tau| include the friction-driven \
+         part (the stack's kernels g_t, f_t, h of that interface); Persson's |tau| quantiles are \
+         those of the vector (mu p0 + X, Y), X and Y independent Gaussians with that interface's \
+         tau_x and tau_y rms."
+    ));
+    out.push('\n');
+    out
+}
+
+/// `coatcheck verify --layer --friction`'s JSON: every interface's `sliding` object (the
+/// film's, with `friction_coupling` null) and the bottom interface's as the top-level one, added
+/// to the object of [`verify_json`].
+pub fn add_sliding_json(v: &mut Value, exact: &[ExactSliding], persson: &[SlidingShear]) {
+    let all: Vec<Value> = exact
+        .iter()
+        .zip(persson)
+        .map(|(e, p)| sliding_json(e, p))
+        .collect();
+    if let Some(items) = v["interfaces"].as_array_mut() {
+        for (item, s) in items.iter_mut().zip(&all) {
+            item["sliding"] = s.clone();
+        }
+    }
+    if let Some(bottom) = all.last() {
+        v["sliding"] = bottom.clone();
+    }
+}
+
 /// A CSV cell: the number in full precision, empty when there is none.
 fn cell(x: Option<f64>) -> String {
     x.map_or(String::new(), |x| format!("{x:e}"))
@@ -349,6 +387,35 @@ fn interface_rows(o: &StackOutcome, v: &StackVerification, k: usize) -> Vec<Chec
     ]
 }
 
+/// Interface k's shear vector under sliding friction (exact, with Persson's where the outcome
+/// carries it: not yet on a stack, whose Persson checker is static).
+fn sliding_rows(s: &SlidingVerification) -> Vec<CheckRow> {
+    let [q50, q99, q999] = s.quantiles;
+    vec![
+        ("mean tau_x", "mean_interface_shear_pa", None, s.mean_x),
+        ("mean tau_y", "mean_interface_shear_y_pa", None, s.mean_y),
+        ("tau_x rms", "tau_x_rms_interface_pa", None, s.tau_x_rms),
+        ("tau_y rms", "tau_y_rms_interface_pa", None, s.tau_y_rms),
+        ("|tau| q0.5", "tau_abs_q50_pa", None, q50),
+        ("|tau| q0.99", "tau_abs_q99_pa", None, q99),
+        ("|tau| q0.999", "tau_abs_q999_pa", None, q999),
+        ("|tau| max", "tau_abs_max_pa", None, s.max),
+    ]
+}
+
+/// The JSON object of interface k's sliding rows (`key`, `key_err`, `persson_key`), with the
+/// friction and the approximation.
+fn sliding_object(
+    s: &SlidingVerification,
+    put: impl Fn(&mut Map<String, Value>, Vec<CheckRow>),
+) -> Value {
+    let mut m = Map::new();
+    m.insert("friction".into(), json!(s.friction));
+    m.insert("approximation".into(), json!("uncoupled"));
+    put(&mut m, sliding_rows(s));
+    Value::Object(m)
+}
+
 /// A value in the table's units (MPa for a `_pa` key).
 fn show(key: &str, x: f64) -> String {
     if key.ends_with("_pa") {
@@ -451,14 +518,21 @@ pub fn check_table(x: &StackExact, o: &StackOutcome) -> String {
     );
     for (k, i) in v.interfaces.iter().enumerate() {
         let at = r.map(|r| move |key: &str| r.interface_spread(k, key));
-        add_rows(
-            &mut t,
-            &i.name,
-            interface_rows(o, v, k),
-            at.as_ref().map(|f| f as &Spread<'_>),
-        );
+        let mut rows = interface_rows(o, v, k);
+        rows.extend(i.sliding.as_ref().map(sliding_rows).unwrap_or_default());
+        add_rows(&mut t, &i.name, rows, at.as_ref().map(|f| f as &Spread<'_>));
     }
     out += &format!("{t}\n");
+    if let Some(s) = v.interfaces.first().and_then(|i| i.sliding.as_ref()) {
+        out += &wrap(&format!(
+            "sliding friction mu = {}: at every interface the exact fields add the traction mu \
+             p(x) along x on the solved frictionless pressure through that interface's kernels \
+             g_t, f_t, h (uncoupled approximation); the exact levels, sigma_rms and P(|tau| > \
+             bond strength) are of the total fields, tau_rms is the pressure-driven shear's.",
+            s.friction
+        ));
+        out.push('\n');
+    }
     let mut c = table(&[
         "check (exact)",
         "at",
@@ -581,6 +655,9 @@ pub fn check_json(x: &StackExact, o: &StackOutcome) -> Value {
             e.insert("normal_pa".into(), stats_json(&i.normal));
             e.insert("shear_abs_pa".into(), stats_json(&i.shear));
             e.insert("peaks_resolved".into(), json!(i.tau_peak.resolved));
+            if let Some(sl) = &i.sliding {
+                e.insert("sliding".into(), sliding_object(sl, put_rows));
+            }
             Value::Object(e)
         })
         .collect();
@@ -664,6 +741,12 @@ pub fn exact_json(x: &StackExact, o: &StackOutcome) -> Value {
             put_exact_rows(&mut e, interface_rows(o, v, k), |key| {
                 r.and_then(|r| r.interface_spread(k, key))
             });
+            if let Some(sl) = &i.sliding {
+                let sliding = sliding_object(sl, |m, rows| {
+                    put_exact_rows(m, rows, |key| r.and_then(|r| r.interface_spread(k, key)))
+                });
+                e.insert("sliding".into(), sliding);
+            }
             Value::Object(e)
         })
         .collect();

@@ -15,7 +15,7 @@
 
 use super::{CheckRow, Comparison, Row, area_fraction_error, comparison_rows, map_spectrum, solve};
 use crate::bem::free;
-use crate::bem::sliding::{FrictionFields, friction_fields};
+use crate::bem::sliding::{FrictionFields, friction_fields_with};
 use crate::bem::{BemSettings, BemSolution, Boundary, FieldStats, InterfaceFields, Surface};
 use crate::check::Evaluation;
 use crate::contact::{Contact, Engine, Request, SlidingShear, friction_coupling};
@@ -74,23 +74,43 @@ pub fn with_friction(
     if mu == 0.0 {
         return Ok(None);
     }
+    let (layers, d) = (stack.layers, stack.thickness);
+    let kernels = |q: f64| {
+        let t = layers.tangential(q * d);
+        [t.g_t, t.f_t, t.h]
+    };
+    with_friction_kernels(solution, fields, mu, kernels).map(Some)
+}
+
+/// [`with_friction`] at an interface whose tangential kernels at wavenumber q > 0 (1/m) are
+/// `kernels(q) = [g_t, f_t, h]` ([`friction_fields_with`]), with the static fields `fields` of
+/// the same interface, for any μ ≥ 0.
+pub fn with_friction_kernels<K>(
+    solution: &BemSolution,
+    fields: &InterfaceFields,
+    mu: f64,
+    kernels: K,
+) -> Result<(InterfaceFields, ExactSliding), Error>
+where
+    K: Fn(f64) -> [f64; 3] + Sync,
+{
     let f = match solution.boundary {
-        Boundary::Periodic => friction_fields(
+        Boundary::Periodic => friction_fields_with(
             &solution.pressure,
             (solution.nx, solution.ny),
             (solution.dx, solution.dy),
-            stack,
             mu,
+            kernels,
         )?,
         // The zero-padded pressure on the doubled grid, as the static fields (`bem::free`).
         Boundary::Free => {
             let nx = solution.nx;
-            let f = friction_fields(
+            let f = friction_fields_with(
                 &free::padded(&solution.pressure, nx),
                 (2 * nx, 2 * solution.ny),
                 (solution.dx, solution.dy),
-                stack,
                 mu,
+                kernels,
             )?;
             FrictionFields {
                 shear_x: free::cropped(&f.shear_x, nx),
@@ -117,7 +137,7 @@ pub fn with_friction(
         shear_y,
     };
     let summary = ExactSliding::of(mu, &total, fields.shear_stats.rms);
-    Ok(Some((total, summary)))
+    Ok((total, summary))
 }
 
 /// The exact sliding numbers of `check --verify`, each with the half-resolution error estimate.
@@ -138,7 +158,7 @@ pub struct SlidingVerification {
 impl SlidingVerification {
     /// From the full-resolution solve (`fine`, with its |τ| statistics) and, when made, the
     /// half-resolution one: the error is their difference, as in [`super::verify`].
-    pub(super) fn of(
+    pub(crate) fn of(
         fine: (&ExactSliding, &FieldStats),
         coarse: Option<(&ExactSliding, &FieldStats)>,
     ) -> Self {
@@ -278,11 +298,32 @@ fn sliding_rows(
 ) -> Result<Vec<Row>, Error> {
     let mut rows = comparison_rows(sol, total, theory, None, None);
     rows.retain(|r| !r.name.contains("tau"));
+    vector_rows(
+        &mut rows,
+        (theory.tau_rms_interface, fields.shear_stats.rms),
+        (total, exact),
+        shear,
+        bond,
+    )?;
+    Ok(rows)
+}
+
+/// The shear vector's rows of one interface under sliding, appended to `rows`: the static τ_rms
+/// (Persson's, the exact field's), the mean and the rms of each component, the |τ| quantiles
+/// of the total fields `total` against the vector rule, their maximum, and the bond exceedance
+/// (`bond`: the strength and the exact fraction above it).
+pub(crate) fn vector_rows(
+    rows: &mut Vec<Row>,
+    (static_persson, static_exact): (Option<Estimate>, f64),
+    (total, exact): (&InterfaceFields, &ExactSliding),
+    shear: &SlidingShear,
+    bond: Option<(f64, f64)>,
+) -> Result<(), Error> {
     rows.push(Row::new(
         "tau_rms interface (pressure-driven)",
         "Pa",
-        theory.tau_rms_interface,
-        fields.shear_stats.rms,
+        static_persson,
+        static_exact,
     ));
     rows.push(Row::new(
         "mean tau_x interface",
@@ -335,7 +376,7 @@ fn sliding_rows(
             f,
         ));
     }
-    Ok(rows)
+    Ok(())
 }
 
 /// The sliding rows of `check --verify`: the shear vector's mean and rms and the |τ| quantiles

@@ -52,3 +52,4 @@ mod validity;
 mod verify_check;
 mod verify_sliding;
 mod verify_stack;
+mod verify_stack_sliding;

@@ -89,7 +89,7 @@ fn one_layer_stack_min_thickness_is_the_films() {
         0,
         Checks::all(),
     );
-    let got = stack_min_thickness::min_thickness(&s, &one, &settings).unwrap();
+    let got = stack_min_thickness::min_thickness(&s, &one, 0.0, &settings).unwrap();
     let (w, g) = (want.thickness().unwrap(), got.thickness().unwrap());
     assert!(!want.search.all_pass_to_floor, "{want:?}");
     close(g.value, w.value, 1e-12, "d_min");
@@ -130,21 +130,22 @@ fn exact_stack_verdict_flips_across_the_exact_min_thickness() {
             ]
         };
         let at = |d: f64, checks| stack(layers(d), of, checks);
-        let m =
-            stack_min_thickness::min_thickness(&s, &at(5e-6, Checks::all()), &settings).unwrap();
+        let m = stack_min_thickness::min_thickness(&s, &at(5e-6, Checks::all()), 0.0, &settings)
+            .unwrap();
         let d = m.thickness().expect("a thickness passes");
         assert!(!m.search.all_pass_to_floor, "layer {of}: {m:?}");
         assert_eq!(m.search.governing, Some(CheckKind::BondShear), "layer {of}");
         assert!(d.err.is_finite() && d.err < 0.1 * d.value, "{d:?}");
         for (factor, pass) in [(0.9, false), (1.1, true)] {
-            let (v, _) = on_stack_surface(&s, &at(factor * d.value, stress), &settings).unwrap();
+            let (v, _) =
+                on_stack_surface(&s, &at(factor * d.value, stress), 0.0, &settings).unwrap();
             assert_eq!(
                 v.pass, pass,
                 "layer {of}: stress checks at {factor} d_min: {:?}",
                 v.checks
             );
             let (v, em) =
-                on_stack_surface(&s, &at(factor * d.value, Checks::all()), &settings).unwrap();
+                on_stack_surface(&s, &at(factor * d.value, Checks::all()), 0.0, &settings).unwrap();
             assert_eq!(v.pass, pass, "layer {of}: all checks at {factor} d_min");
             let c = v.checks.last().unwrap();
             assert_eq!(c.check.kind, CheckKind::MinThickness);
@@ -190,7 +191,7 @@ fn one_layer_stack_realisations_are_the_films() {
         .unwrap();
     let (wv, wm, wr) = on_realisations(&spectrum, &film, d, &persson, &opts).unwrap();
     let one = stack(vec![layer("rubber", rubber, d, 0.15e6)], 0, Checks::all());
-    let (gv, gm, gr) = on_stack_realisations(&spectrum, &one, &opts).unwrap();
+    let (gv, gm, gr) = on_stack_realisations(&spectrum, &one, 0.0, &opts).unwrap();
     assert_eq!(
         (gr.count, gr.seeds.clone(), gr.grid),
         (wr.count, wr.seeds.clone(), wr.grid)

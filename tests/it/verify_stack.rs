@@ -16,11 +16,11 @@ use coatcheck::verify_stack::{InterfaceExact, StackVerification, compare, verify
 use serde_json::Value;
 use std::f64::consts::PI;
 
-fn el(e: f64, nu: f64) -> Elastic {
+pub(crate) fn el(e: f64, nu: f64) -> Elastic {
     Elastic::new(e, nu).unwrap()
 }
 
-fn tight() -> BemSettings {
+pub(crate) fn tight() -> BemSettings {
     BemSettings {
         gap_tol: 1e-10,
         max_iter: 5000,
@@ -28,7 +28,7 @@ fn tight() -> BemSettings {
     }
 }
 
-fn criteria(epsilon: f64) -> Criteria {
+pub(crate) fn criteria(epsilon: f64) -> Criteria {
     Criteria {
         shear_tail: None,
         epsilon,
@@ -39,7 +39,7 @@ fn criteria(epsilon: f64) -> Criteria {
 
 /// A self-affine map (H = 0.8, q from the fundamental to 16 of it, rms slope 0.1), 64 × 64
 /// pixels over 100 µm.
-fn map() -> coatcheck::topography::HeightMap {
+pub(crate) fn map() -> coatcheck::topography::HeightMap {
     band_map(1.0, 16.0)
 }
 
@@ -60,11 +60,11 @@ fn band_map(q0: f64, q1: f64) -> coatcheck::topography::HeightMap {
     .unwrap()
 }
 
-fn surface() -> Surface {
+pub(crate) fn surface() -> Surface {
     Surface::from_height_map(&map()).unwrap()
 }
 
-fn layer(name: &str, e: f64, nu: f64, d: f64, bond: f64) -> StackLayer {
+pub(crate) fn layer(name: &str, e: f64, nu: f64, d: f64, bond: f64) -> StackLayer {
     StackLayer {
         name: name.into(),
         material: el(e, nu),
@@ -73,7 +73,7 @@ fn layer(name: &str, e: f64, nu: f64, d: f64, bond: f64) -> StackLayer {
     }
 }
 
-fn design(layers: Vec<StackLayer>, p0: f64, epsilon: f64) -> StackDesign {
+pub(crate) fn design(layers: Vec<StackLayer>, p0: f64, epsilon: f64) -> StackDesign {
     StackDesign {
         layers,
         substrate: el(2e11, 0.3),
@@ -85,18 +85,18 @@ fn design(layers: Vec<StackLayer>, p0: f64, epsilon: f64) -> StackDesign {
 }
 
 /// |a − b| ≤ tol·max(|a|, |b|) (equal, including two NaNs, passes).
-fn close(a: f64, b: f64, tol: f64, what: &str) {
+pub(crate) fn close(a: f64, b: f64, tol: f64, what: &str) {
     let ok = a == b || (a.is_nan() && b.is_nan()) || (a - b).abs() <= tol * a.abs().max(b.abs());
     assert!(ok, "{what}: {a:e} vs {b:e} (tol {tol:e})");
 }
 
-fn close_est(a: &Estimate, b: &Estimate, tol: f64, what: &str) {
+pub(crate) fn close_est(a: &Estimate, b: &Estimate, tol: f64, what: &str) {
     close(a.value, b.value, tol, what);
     close(a.err, b.err, tol, &format!("{what} err"));
 }
 
 /// Every reported number of two interfaces (the name aside).
-fn same_interface(a: &InterfaceExact, b: &InterfaceExact, tol: f64) {
+pub(crate) fn same_interface(a: &InterfaceExact, b: &InterfaceExact, tol: f64) {
     close(a.depth, b.depth, 1e-15, "depth");
     close_est(&a.sigma_rms, &b.sigma_rms, tol, "sigma_rms");
     close_est(&a.tau_rms, &b.tau_rms, tol, "tau_rms");
@@ -152,6 +152,7 @@ fn one_layer_stack_equals_the_film() {
     let got = verify(
         &s,
         &design(vec![layer("rubber", 2e6, 0.5, d, bond)], p0, 1e-3),
+        0.0,
         &tight(),
     )
     .unwrap();
@@ -214,8 +215,8 @@ fn two_identical_layers_are_one_of_the_summed_thickness() {
         p0,
         1e-3,
     );
-    let a = verify(&s, &one, &tight()).unwrap();
-    let b = verify(&s, &two, &tight()).unwrap();
+    let a = verify(&s, &one, 0.0, &tight()).unwrap();
+    let b = verify(&s, &two, 0.0, &tight()).unwrap();
     let tol = 1e-12;
     same_top(&b, &a, tol);
     close(b.q_low_z, a.q_low_z, 1e-15, "q_L z");
@@ -275,7 +276,7 @@ fn homogeneous_stack_on_one_mode_gives_the_closed_forms() {
         1e-6,
     );
     d.substrate = el(e, nu);
-    let v = verify(&s, &d, &tight()).unwrap();
+    let v = verify(&s, &d, 0.0, &tight()).unwrap();
     let tol = 1e-8;
     assert_eq!(v.area_fraction.value, 1.0);
     close(
