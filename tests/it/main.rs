@@ -41,6 +41,7 @@ mod sliding;
 mod stack;
 mod stack_exact;
 mod stack_outputs;
+mod stack_ranges;
 mod stack_robust;
 mod stack_scene;
 mod stack_sliding;
