@@ -43,6 +43,7 @@ mod stack_exact;
 mod stack_outputs;
 mod stack_ranges;
 mod stack_robust;
+mod stack_robust_outputs;
 mod stack_scene;
 mod stack_sliding;
 mod stack_tangential;
