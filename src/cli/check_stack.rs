@@ -11,7 +11,10 @@ use coatcheck::scene::Scene;
 
 /// The options a stack check does not take (yet), by flag.
 pub fn refuse(args: &CheckArgs) -> Result<(), Error> {
-    let given = [("--parquet", args.parquet.is_some())];
+    let given = [(
+        "--parquet with --sweep-thickness",
+        args.parquet.is_some() && args.sweep_thickness.is_some(),
+    )];
     match given.iter().find(|(_, on)| *on) {
         Some((what, _)) => Err(Error::Value {
             origin: what.to_string(),

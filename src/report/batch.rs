@@ -124,7 +124,7 @@ pub struct Record {
 
 /// One interface of a layer stack in a record (the shape of `interfaces[]` in the stack
 /// check's JSON).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct InterfaceRecord {
     /// The layer above the interface.
     pub name: String,

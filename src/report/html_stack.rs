@@ -1,7 +1,8 @@
 //! The HTML report's section of a layer stack ([`super::html`]): the checks with where they
 //! apply, what alone would make a failing stack pass, the layers with their sources, the
 //! results on the top surface and the contact, every interface's stresses, the spectrum plot,
-//! the warnings and the uncertainty.
+//! the warnings and the uncertainty (with `--robust`: the materials' ranges, the robust verdict
+//! and each check at its worst corner).
 
 use super::check::{check_cells, scene_rows};
 use super::html::{Section, lever_text, spectrum_plot};
@@ -47,6 +48,13 @@ pub fn section(title: &str, j: &Judged, o: &StackOutcome) -> Result<Section, Err
                 .unwrap_or_default()
         ),
         None => "no check enabled".into(),
+    };
+    let headline = match &j.stack_robust {
+        Some(r) => format!(
+            "{headline}; robust (worst corner of the materials' ranges): {}",
+            if r.pass { "PASS" } else { "FAIL" }
+        ),
+        None => headline,
     };
     // The film's rows of a scene are the top layer's in a stack: the layers' rows replace them.
     let mut inputs: Vec<(String, String)> = scene_rows(scene)
@@ -124,7 +132,7 @@ pub fn section(title: &str, j: &Judged, o: &StackOutcome) -> Result<Section, Err
         .collect();
     let depth: f64 = design.layers.iter().map(|l| l.thickness).sum();
     let (lo, _) = spectrum.support();
-    let uncertainty = vec![
+    let mut uncertainty = vec![
         format!(
             "Numerical: each result above carries its estimated numerical error (relative \
              tolerance {}).",
@@ -142,6 +150,10 @@ pub fn section(title: &str, j: &Judged, o: &StackOutcome) -> Result<Section, Err
          spread is not propagated."
             .into(),
     ];
+    if let Some(r) = &j.stack_robust {
+        uncertainty.pop();
+        uncertainty.extend(super::stack_robust::sentences(r, &design, o));
+    }
     Ok(Section {
         title: title.to_string(),
         pass: j.pass(),

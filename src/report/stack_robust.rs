@@ -1,8 +1,9 @@
 //! The robust section of `check --robust` on a layer stack ([`crate::check::stack_robust`]): the
 //! ranges with the governing corner (and those held at one end when the corners are capped),
 //! each check at every interface at its worst corner, the robust verdict beside the nominal one
-//! and the d_min range of the layer `criteria.thickness_of`, as a table and JSON (the film's
-//! `robust` object of `check.schema.json`, each check with `at`, each range with `held`).
+//! and the d_min range of the layer `criteria.thickness_of`, as a table, JSON (the film's
+//! `robust` object of `check.schema.json`, each check with `at`, each range with `held`) and
+//! sentences for the HTML report.
 
 use super::check::{check_json, check_rows_of};
 use super::{modulus, mpa, table, um, wrap};
@@ -176,4 +177,94 @@ pub fn json_value(r: &StackRobust, design: &StackDesign, o: &StackOutcome) -> Va
             "nominal": nominal_d_min(o),
         })),
     })
+}
+
+/// Sentences for the HTML report's "how far to trust these numbers": the ranges, the robust
+/// verdict with its governing check and corner, each check's utilisation at its worst corner,
+/// and the d_min range of the layer `criteria.thickness_of`.
+pub fn sentences(r: &StackRobust, design: &StackDesign, o: &StackOutcome) -> Vec<String> {
+    if r.ranges.is_empty() {
+        return vec![
+            "Materials: no property has a range of non-zero width, so the robust verdict is the \
+             nominal one."
+                .into(),
+        ];
+    }
+    let ranges: Vec<String> = r
+        .ranges
+        .iter()
+        .map(|(p, s)| {
+            let nominal = p.value(design).map_or("-".into(), |v| show(*p, v));
+            format!(
+                "{} {nominal} ({} to {})",
+                p.key(),
+                show(*p, s.min),
+                show(*p, s.max)
+            )
+        })
+        .collect();
+    let corner: Vec<String> = r
+        .ranges
+        .iter()
+        .zip(&r.corner)
+        .enumerate()
+        .map(|(i, ((p, s), &v))| {
+            let how = if held(r, i) { ", held" } else { "" };
+            format!("{} = {} ({}{how})", p.key(), show(*p, v), end(v, s.min))
+        })
+        .collect();
+    let held_note = if r.held.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; {} elastic range{} held at the worse end, the {MAX_VARIED} that change the \
+             utilisation most varied",
+            r.held.len(),
+            if r.held.len() == 1 { "" } else { "s" }
+        )
+    };
+    let mut out = vec![format!(
+        "Materials: judged at the worst corner of the ranges {} ({} corners{held_note}): robust \
+         verdict {} (nominal {}){}.",
+        ranges.join(", "),
+        r.corners,
+        verdict(r.pass),
+        verdict(o.pass),
+        r.governing
+            .as_ref()
+            .map(|(k, at)| format!(
+                ", governed by {} at {at} (corner: {})",
+                k.name(),
+                corner.join(", ")
+            ))
+            .unwrap_or_default()
+    )];
+    let each: Vec<String> = r
+        .checks
+        .iter()
+        .map(|c| {
+            let res = &c.check.result;
+            format!(
+                "{} at {} {} ({})",
+                res.kind.name(),
+                c.check.at,
+                super::utilisation_cell(res.margin),
+                verdict(res.pass)
+            )
+        })
+        .collect();
+    out.push(format!(
+        "Utilisation of each check at its own worst corner: {}.",
+        each.join(", ")
+    ));
+    if let Some(m) = &r.min_thickness {
+        out.push(format!(
+            "d_min of layer '{}' over the corners of the ranges: {} to {} (nominal {}).",
+            design.layers[design.thickness_of].name,
+            d_min_text(m.min),
+            d_min_text(m.max),
+            d_min_text(nominal_d_min(o))
+        ));
+    }
+    out
 }

@@ -702,7 +702,8 @@ pub struct RawScene {
 }
 
 /// One `[[layer]]` table as written: a material by name or its moduli, a thickness, an
-/// optional name, and the bond to what lies below (a bond by name or a shear strength).
+/// optional name, the bond to what lies below (a bond by name or a shear strength), and
+/// optional ranges of the layer's moduli and its bond's strength.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawLayer {
@@ -712,6 +713,11 @@ pub struct RawLayer {
     pub poisson_ratio: Option<Field>,
     pub thickness: Option<Field>,
     pub bond: Option<Field>,
+    /// Ranges for `--robust`, MIN,MAX, replacing the library's: the layer's E and ν and its
+    /// bond's shear strength.
+    pub youngs_modulus_range: Option<Field>,
+    pub poisson_ratio_range: Option<Field>,
+    pub shear_strength_range: Option<Field>,
 }
 
 impl Default for RawScene {

@@ -7,6 +7,9 @@
 //! material = "paper-rubber"   # or youngs_modulus, poisson_ratio
 //! thickness = "10 um"
 //! bond = "chemlok-type"       # the bond to what lies below: a bond by name, or "5 MPa"
+//! youngs_modulus_range = ["4 MPa", "8 MPa"]  # optional, for --robust (replaces the library's;
+//!                                            # likewise poisson_ratio_range and the bond's
+//!                                            # shear_strength_range)
 //! [[layer]]
 //! name = "primer"
 //! material = "epoxy-primer"
@@ -21,7 +24,7 @@
 use super::keys::{Key, RawLayer};
 use crate::error::Error;
 use crate::layer::Elastic;
-use crate::material::{Bond, Kind, Library, Material, Ranges};
+use crate::material::{Bond, Kind, Library, Material, Ranges, SpanOf, read_span};
 use crate::tomlin::{Ctx, Field, Raw};
 use crate::units::{Dim, parse_quantity};
 use serde::Serialize;
@@ -84,7 +87,7 @@ fn resolve_layer(
         Some(f) => ctx.text(f, &key_name(k, "name"))?.to_string(),
         None => format!("layer {k}"),
     };
-    let material = match (&l.material, &l.youngs_modulus, &l.poisson_ratio) {
+    let mut material = match (&l.material, &l.youngs_modulus, &l.poisson_ratio) {
         (Some(f), None, None) => {
             let key = key_name(k, "material");
             let m = library
@@ -143,7 +146,7 @@ fn resolve_layer(
             ));
         }
     };
-    let bond = match &l.bond {
+    let mut bond = match &l.bond {
         Some(f) => bond(k, f, ctx, library)?,
         None => {
             return Err(ctx.missing(
@@ -153,12 +156,62 @@ fn resolve_layer(
             ));
         }
     };
+    scene_ranges(k, l, ctx, &mut material, &mut bond)?;
     Ok(SceneLayer {
         name,
         material,
         thickness,
         bond,
     })
+}
+
+/// The layer's scene ranges (`youngs_modulus_range`, `poisson_ratio_range`,
+/// `shear_strength_range`), each replacing the library's range of its property and holding its
+/// nominal value, as `film.*_range` and `bond.shear_strength_range` do for a film.
+fn scene_ranges(
+    k: usize,
+    l: &RawLayer,
+    ctx: Ctx<'_>,
+    material: &mut Material,
+    bond: &mut Bond,
+) -> Result<(), Error> {
+    let (e, nu, shear) = (
+        material.elastic.youngs,
+        material.elastic.poisson,
+        bond.shear_strength,
+    );
+    let fields = [
+        (
+            &l.youngs_modulus_range,
+            "youngs_modulus_range",
+            Dim::Pressure,
+            SpanOf::Positive,
+            e,
+            &mut material.ranges.youngs_modulus,
+        ),
+        (
+            &l.poisson_ratio_range,
+            "poisson_ratio_range",
+            Dim::Dimensionless,
+            SpanOf::Poisson,
+            nu,
+            &mut material.ranges.poisson_ratio,
+        ),
+        (
+            &l.shear_strength_range,
+            "shear_strength_range",
+            Dim::Pressure,
+            SpanOf::Positive,
+            shear,
+            &mut bond.ranges.strength,
+        ),
+    ];
+    for (field, name, dim, of, nominal, slot) in fields {
+        if let Some(f) = field {
+            *slot = Some(read_span(&ctx, f, &key_name(k, name), dim, of, nominal)?);
+        }
+    }
+    Ok(())
 }
 
 /// A layer's thickness, within `film.thickness`'s range.

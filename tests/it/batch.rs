@@ -588,3 +588,169 @@ fn parquet_reads_back_with_polars() {
     let pass = df.column("bond_shear_pass").unwrap().bool().unwrap();
     assert_eq!(pass.len(), 3);
 }
+
+/// With the `parquet` feature: a batch of layer stacks and a film as Parquet, one row per
+/// stack interface (top first, `interface` from 1) and one per film (interface columns null),
+/// each row carrying its scene's columns; every number equal to the batch JSON's (its
+/// interfaces and their bond-shear checks). A single stack scene writes the same rows; a
+/// stack's thickness sweep is refused (exit 2, nothing written).
+#[cfg(feature = "parquet")]
+#[test]
+fn parquet_has_a_row_per_stack_interface() {
+    use polars::prelude::{DataFrame, ParquetReader, SerReader};
+    let read = |path: &Path| {
+        ParquetReader::new(std::fs::File::open(path).unwrap())
+            .finish()
+            .unwrap()
+    };
+    let example = |name: &str| {
+        std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("examples")
+                .join(name),
+        )
+        .unwrap()
+    };
+    let d = dir_with(&[
+        ("film.toml", scene(PASS)),
+        ("primer.toml", example("rubber-epoxy-primer-steel.toml")),
+        ("ptfe.toml", example("ptfe-rubber-steel.toml")),
+    ]);
+    let out = tempfile::tempdir().unwrap();
+    let pq = out.path().join("batch.parquet");
+    let o = run(&[
+        "check",
+        d.path().to_str().unwrap(),
+        "--format",
+        "json",
+        "--parquet",
+        pq.to_str().unwrap(),
+    ]);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let v = json(&o);
+    let df = read(&pq);
+    let text = |df: &DataFrame, c: &str, i: usize| {
+        df.column(c)
+            .unwrap()
+            .str()
+            .unwrap()
+            .get(i)
+            .map(String::from)
+    };
+    let number = |df: &DataFrame, c: &str, i: usize| df.column(c).unwrap().f64().unwrap().get(i);
+    let index = |df: &DataFrame, i: usize| df.column("interface").unwrap().u64().unwrap().get(i);
+    // serde_json's default float parser may be off by an ulp; Parquet keeps the f64 exactly.
+    let close = |a: Option<f64>, b: Option<f64>, what: &str| match (a, b) {
+        (Some(a), Some(b)) => assert!((a - b).abs() <= 4e-16 * b.abs(), "{what}: {a} {b}"),
+        (a, b) => assert_eq!(a, b, "{what}"),
+    };
+    let mut row = 0;
+    let mut stacks = 0;
+    for s in v["scenes"].as_array().unwrap() {
+        let scene = s["scene"].as_str().unwrap();
+        match s["interfaces"].as_array() {
+            None => {
+                assert_eq!(text(&df, "scene", row).as_deref(), Some(scene));
+                assert_eq!(index(&df, row), None);
+                assert_eq!(text(&df, "interface_name", row), None);
+                assert_eq!(number(&df, "interface_tau_rms_pa", row), None);
+                assert_eq!(text(&df, "thickness_of", row), None);
+                close(
+                    number(&df, "tau_rms_interface_pa", row),
+                    s["tau_rms_interface_pa"].as_f64(),
+                    scene,
+                );
+                row += 1;
+            }
+            Some(interfaces) => {
+                stacks += 1;
+                assert!(interfaces.len() >= 2, "{scene}");
+                for (k, i) in interfaces.iter().enumerate() {
+                    let name = i["name"].as_str().unwrap();
+                    let what = format!("{scene} {name}");
+                    assert_eq!(text(&df, "scene", row).as_deref(), Some(scene));
+                    assert_eq!(text(&df, "verdict", row).as_deref(), s["verdict"].as_str());
+                    assert_eq!(
+                        text(&df, "thickness_of", row).as_deref(),
+                        s["thickness_of"].as_str()
+                    );
+                    close(number(&df, "margin", row), s["margin"].as_f64(), &what);
+                    assert_eq!(index(&df, row), Some(k as u64 + 1));
+                    assert_eq!(text(&df, "interface_name", row).as_deref(), Some(name));
+                    for key in [
+                        "depth_m",
+                        "sigma_rms_pa",
+                        "sigma_rms_pa_err",
+                        "tau_rms_pa",
+                        "tau_rms_pa_err",
+                        "tau_peak_pa",
+                        "tau_peak_pa_err",
+                        "sigma_peak_pa",
+                        "sigma_peak_pa_err",
+                        "bond_strength_pa",
+                        "bond_exceedance",
+                    ] {
+                        close(
+                            number(&df, &format!("interface_{key}"), row),
+                            i[key].as_f64(),
+                            &format!("{what} {key}"),
+                        );
+                    }
+                    let bond = s["checks"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .find(|c| c["name"] == "bond-shear" && c["at"] == name)
+                        .unwrap();
+                    for (col, key) in [
+                        ("interface_bond_shear_limit_pa", "limit"),
+                        ("interface_bond_shear_utilisation", "utilisation"),
+                        ("interface_bond_shear_margin", "margin"),
+                    ] {
+                        close(number(&df, col, row), bond[key].as_f64(), &what);
+                    }
+                    assert_eq!(
+                        text(&df, "interface_bond_shear_pass", row),
+                        Some(bond["pass"].to_string())
+                    );
+                    row += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(stacks, 2);
+    assert_eq!(df.height(), row);
+
+    // One stack scene: its rows as in the batch.
+    let one = out.path().join("one.parquet");
+    let o = run(&[
+        "check",
+        &p(d.path(), "primer.toml"),
+        "--parquet",
+        one.to_str().unwrap(),
+    ]);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let df1 = read(&one);
+    assert_eq!(df1.height(), 2);
+    let names: Vec<Option<String>> = (0..2).map(|i| text(&df1, "interface_name", i)).collect();
+    assert_eq!(names, [Some("rubber".into()), Some("primer".into())]);
+    assert_eq!(df1.width(), df.width(), "one schema for every batch");
+
+    // A stack's sweep has no Parquet form.
+    let sweep = out.path().join("sweep.parquet");
+    let o = run(&[
+        "check",
+        &p(d.path(), "primer.toml"),
+        "--sweep-thickness",
+        "1um:100um:3",
+        "--parquet",
+        sweep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--parquet with --sweep-thickness"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!sweep.exists());
+}

@@ -210,3 +210,39 @@ fn a_verified_report_shows_the_exact_d_min_and_the_realisation_spread() {
         renders_with_ink(b, dir.path(), &html, (1000, 5000));
     }
 }
+
+/// A stack's report with `--robust`: the robust verdict in the headline and the ranges, each
+/// check at its worst corner and the d_min range among the uncertainty are on the page, and the
+/// page renders (not blank).
+#[test]
+fn a_stack_report_renders_its_robust_section() {
+    let dir = tempfile::tempdir().unwrap();
+    let html = dir.path().join("report.html");
+    let o = run(&[
+        "check",
+        "examples/rubber-epoxy-primer-steel.toml",
+        "--robust",
+        "--report",
+        html.to_str().unwrap(),
+    ]);
+    assert!(
+        matches!(o.status.code(), Some(0 | 1)),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let page = std::fs::read_to_string(&html).unwrap();
+    for want in [
+        "robust (worst corner of the materials&#39; ranges): ",
+        "Materials: judged at the worst corner of the ranges layer[2].youngs_modulus 3.000 GPa \
+         (2.400 GPa to 4.000 GPa)",
+        "Utilisation of each check at its own worst corner: bond-shear at rubber ",
+        "bond-shear at primer ",
+        "d_min of layer &#39;rubber&#39; over the corners of the ranges: ",
+    ] {
+        assert!(page.contains(want), "the page lacks '{want}'");
+    }
+    let Some(browser) = required_chromium() else {
+        return;
+    };
+    renders_with_ink(browser, dir.path(), &html, (1000, 3000));
+}
