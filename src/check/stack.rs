@@ -22,7 +22,9 @@
 //! sliding": the widened steps' thresholds lowered by the vector peak's spread ρ(ε), the peaks
 //! one step from the bond limits). Its kernel argument is made for one film's g, √k_x and f_t;
 //! on a stack it rests, as the static one does, on the interface kernels decaying like
-//! e^{−q z_k} below a thick varied layer, and is tested against dense scans.
+//! e^{−q z_k} below a thick varied layer. Tested, not proven: the premise of the widened steps
+//! on two stacks (every mode, every interface, as functions of the varied thickness) and d_min
+//! against dense scans (`tests/it/stack_friction.rs`).
 //!
 //! The validity warnings are the film's ([`super`], "Validity"), with the bottom interface's
 //! depth for the film thickness.

@@ -363,3 +363,96 @@ fn d_min_under_sliding_matches_a_dense_scan() {
         );
     }
 }
+
+/// The smallest ratio, over every window of at most `n` grid steps, of the larger value at its
+/// ends to the largest inside it, for a kernel given by its ln on a grid: how far the kernel can
+/// rise between the ends of a scan step of that length.
+fn worst_end_ratio(ln_k: &[f64], n: usize) -> f64 {
+    let mut worst = f64::INFINITY;
+    for i in 0..ln_k.len() {
+        let mut inside = f64::NEG_INFINITY;
+        for j in i + 1..(i + n + 1).min(ln_k.len()) {
+            worst = worst.min(ln_k[i].max(ln_k[j]) - inside);
+            inside = inside.max(ln_k[j]);
+        }
+    }
+    worst.exp()
+}
+
+/// The premise of the widened scan steps under sliding (`check::min_thickness`, "Under
+/// sliding"), made for one film's kernels in q·d, on the stacks of the dense-scan test as
+/// functions of the varied layer's thickness: for every mode q (1e5 … 1e8 1/m, 10 a decade) and
+/// every interface, |g_k|, the x-shear kernel √(((g_t,k + h_k)/2)² + (g_t,k − h_k)²/8) and
+/// |f_t,k| seen at 100 thicknesses a decade over the search's range: a step no longer than a
+/// widened step sees at one end at least the step's level of the largest value inside.
+#[test]
+fn stack_kernels_rise_between_step_ends_no_more_than_a_widened_step_allows() {
+    use coatcheck::check::WIDE_STEPS;
+    use coatcheck::layer::stack::{Layer, Stack};
+    let (ptfe, rubber, epoxy, steel) = (el(5e8, 0.46), el(2e6, 0.5), el(3e9, 0.35), el(2e11, 0.3));
+    // Each stack's layers, top first, with `None` for the varied layer's thickness.
+    let stacks = [
+        (
+            "PTFE skin on a rubber lining of thickness d",
+            [(ptfe, Some(5e-6)), (rubber, None)],
+        ),
+        (
+            "rubber of thickness d on an epoxy primer",
+            [(el(1e6, 0.5), None), (epoxy, Some(10e-6))],
+        ),
+    ];
+    let per_decade = 100.0;
+    let (lo, hi) = (1e-9f64, 5e-4f64);
+    let n = ((hi / lo).log10() * per_decade).ceil() as usize;
+    let ds: Vec<f64> = (0..=n)
+        .map(|i| lo * (hi / lo).powf(i as f64 / n as f64))
+        .collect();
+    let mut worst = [[f64::INFINITY; 2]; 3];
+    for (name, spec) in &stacks {
+        let at: Vec<Stack> = ds
+            .iter()
+            .map(|&d| {
+                let layers = spec
+                    .iter()
+                    .map(|&(material, t)| Layer {
+                        material,
+                        thickness: t.unwrap_or(d),
+                    })
+                    .collect();
+                Stack::new(layers, steel).unwrap()
+            })
+            .collect();
+        for iq in 0..=30 {
+            let q = 1e5 * 10f64.powf(iq as f64 / 10.0);
+            // Per interface: ln |g|, ln x-shear, ln |f_t| over the thicknesses.
+            let mut ln = vec![[Vec::new(), Vec::new(), Vec::new()]; 2];
+            for s in &at {
+                let r = s.response(q);
+                for (k, t) in s.tangential(q).iter().enumerate() {
+                    let half_sum = 0.5 * (t.g_t + t.h);
+                    let diff = t.g_t - t.h;
+                    let kx = (half_sum * half_sum + diff * diff / 8.0).sqrt();
+                    ln[k][0].push(r.interfaces[k].1.abs().ln());
+                    ln[k][1].push(kx.ln());
+                    ln[k][2].push(t.f_t.abs().ln());
+                }
+            }
+            for kernels in &ln {
+                for (j, k) in kernels.iter().enumerate() {
+                    for (i, w) in WIDE_STEPS.iter().enumerate() {
+                        let steps = (w.decades * per_decade).round() as usize;
+                        let r = worst_end_ratio(k, steps);
+                        assert!(
+                            r >= w.level,
+                            "{name}, q {q:e}, kernel {j}, {} decades: {r} < {}",
+                            w.decades,
+                            w.level
+                        );
+                        worst[j][i] = worst[j][i].min(r);
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("stack kernels' worst end ratios (|g|, x-shear, |f_t|) per widened step: {worst:?}");
+}
