@@ -239,13 +239,6 @@ pub fn checker(scene: &Scene) -> Result<(Checker, Vec<String>), Error> {
 
 /// The checker of a layer-stack scene with one roughness file, and its reader's warnings.
 pub fn stack_checker(scene: &Scene) -> Result<(StackChecker, Vec<String>), Error> {
-    let refused = [("criteria.shear_tail", scene.criteria.shear_tail.is_some())];
-    if let Some((what, _)) = refused.iter().find(|(_, on)| *on) {
-        return Err(Error::Value {
-            origin: origin(scene),
-            msg: format!("{what} is not available for a layer stack ([[layer]] tables)"),
-        });
-    }
     let (spectrum, warnings) = scene.roughness.spectrum()?;
     Ok((
         StackChecker::new(&spectrum, scene.stack_design(), scene.settings)?,

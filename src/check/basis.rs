@@ -71,13 +71,23 @@ impl Basis {
         scan_range(self.q_low, self.q_high)
     }
 
-    /// The smallest thickness above which `utilisation` stays ≤ 1, over the scan range.
+    /// The smallest thickness above which `utilisation` stays ≤ 1, over the scan range; under
+    /// friction μ > 0 the widened steps allow for the vector peak's spread at exceedance
+    /// `epsilon` ([`crate::tail::anisotropy_spread`]; [`super::min_thickness`], "Under
+    /// sliding").
     pub fn min_thickness(
         &self,
+        friction: f64,
+        epsilon: f64,
         utilisation: impl FnMut(f64) -> Result<Utilisation, Error>,
     ) -> Result<MinThickness, Error> {
         let (lo, hi) = self.scan_range();
-        search_min_thickness(lo, hi, utilisation)
+        let spread = if friction > 0.0 {
+            crate::tail::anisotropy_spread(epsilon)
+        } else {
+            1.0
+        };
+        super::min_thickness::search_min_thickness_spread(lo, hi, spread, utilisation)
     }
 
     /// Where the theory is strained ([`super`], "Validity"): few long waves carrying the

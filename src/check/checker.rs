@@ -4,7 +4,6 @@
 
 use super::basis::{Basis, Wording, check_warnings, finite_guard, governing, min_thickness_check};
 use super::criteria::{limit, upper_check, yield_governing};
-use super::min_thickness::search_min_thickness_spread;
 use super::*;
 use crate::contact::{self, Contact, Engine, NormalStress, Request, SlidingShear};
 use crate::error::Error;
@@ -117,21 +116,14 @@ impl Checker {
         let d = &self.design;
         let eps = d.criteria.epsilon;
         match sliding {
-            Some(s) => {
-                let v = ShearVector::new(s.mean.value, s.tau_x_rms.value, s.tau_y_rms.value)?;
-                let mut peak = match how {
-                    Peak::Solved => v.peak(eps)?,
-                    Peak::FromLimit => v.peak_from(self.limit(d.bond_strength), eps)?,
-                };
-                let rel = s.tau_x_rms.rel_err().max(s.tau_y_rms.rel_err());
-                peak.err += rel * peak.value;
-                peak.status = Estimate::worst(
-                    peak.status,
-                    Estimate::worst(s.tau_x_rms.status, s.tau_y_rms.status),
-                );
-                let exceedance = extras.then(|| v.exceedance(d.bond_strength).value);
-                Ok((peak, exceedance))
-            }
+            Some(s) => vector_peak(
+                s,
+                d.bond_strength,
+                self.limit(d.bond_strength),
+                eps,
+                extras,
+                how,
+            ),
             None => {
                 let k = contact::tau_peak(1.0, eps);
                 let exceedance =
@@ -250,13 +242,9 @@ impl Checker {
     /// widened steps allow for the vector peak's spread ([`crate::tail::anisotropy_spread`];
     /// [`super::min_thickness`], "Under sliding").
     fn search(&self, how: Peak) -> Result<MinThickness, Error> {
-        let (lo, hi) = self.basis.scan_range();
-        let spread = if self.design.friction > 0.0 {
-            crate::tail::anisotropy_spread(self.design.criteria.epsilon)
-        } else {
-            1.0
-        };
-        search_min_thickness_spread(lo, hi, spread, |d| self.utilisation(d, how))
+        let d = &self.design;
+        self.basis
+            .min_thickness(d.friction, d.criteria.epsilon, |t| self.utilisation(t, how))
     }
 
     /// The full check at the design's thickness: all quantities, the enabled checks, d_min.
@@ -339,9 +327,36 @@ impl Checker {
     }
 }
 
+/// The vector rule's peak interface shear at exceedance `eps` for the shear vector `s`, found
+/// as `how` says (the rms errors enter as their largest relative error times the peak), with
+/// P(|τ| > `bond_strength`) when `extras`; `limit` is the bond's limit (the start of
+/// [`Peak::FromLimit`]'s step). A film's and a layer stack's interfaces alike.
+pub(super) fn vector_peak(
+    s: &SlidingShear,
+    bond_strength: f64,
+    limit: f64,
+    eps: f64,
+    extras: bool,
+    how: Peak,
+) -> Result<(Estimate, Option<f64>), Error> {
+    let v = ShearVector::new(s.mean.value, s.tau_x_rms.value, s.tau_y_rms.value)?;
+    let mut peak = match how {
+        Peak::Solved => v.peak(eps)?,
+        Peak::FromLimit => v.peak_from(limit, eps)?,
+    };
+    let rel = s.tau_x_rms.rel_err().max(s.tau_y_rms.rel_err());
+    peak.err += rel * peak.value;
+    peak.status = Estimate::worst(
+        peak.status,
+        Estimate::worst(s.tau_x_rms.status, s.tau_y_rms.status),
+    );
+    let exceedance = extras.then(|| v.exceedance(bond_strength).value);
+    Ok((peak, exceedance))
+}
+
 /// How the vector rule's peak shear is found at a thickness.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Peak {
+pub(super) enum Peak {
     /// Solved to [`crate::tail::PEAK_TARGET_RTOL`] ([`ShearVector::peak`]).
     Solved,
     /// One step from the bond limit ([`ShearVector::peak_from`]): on the same side of the

@@ -14,6 +14,18 @@
 //!   utilisation tends to that of the stack with a half-space of the varied layer's material,
 //!   which the bulk bound evaluates.
 //!
+//! Under sliding (`friction` μ > 0) or with the vector rule asked for, the rule is the film's
+//! ([`ShearTail::resolve`], [`super`]): bond-shear at interface k judges the ε-peak of |τ| for
+//! that interface's shear vector (μp0 + X_k, Y_k) ([`crate::contact::Engine::evaluate_stack_sliding`]),
+//! P(|τ| > τ_bond,k) likewise, and substrate-yield's σ_rms includes the friction-driven part.
+//! The min-thickness search is the film's under sliding ([`super::min_thickness`], "Under
+//! sliding": the widened steps' thresholds lowered by the vector peak's spread ρ(ε), the peaks
+//! one step from the bond limits). Its kernel argument is made for one film's g, √k_x and f_t;
+//! on a stack it rests, as the static one does, on the interface kernels decaying like
+//! e^{−q z_k} below a thick varied layer. Tested, not proven: the premise of the widened steps
+//! on two stacks (every mode, every interface, as functions of the varied thickness) and d_min
+//! against dense scans (`tests/it/stack_friction.rs`).
+//!
 //! The validity warnings are the film's ([`super`], "Validity"), with the bottom interface's
 //! depth for the film thickness.
 //!
@@ -21,9 +33,10 @@
 //! named after layer k).
 
 use super::basis::{Basis, Wording, check_warnings, finite_guard, governing, min_thickness_check};
+use super::checker::{Peak, vector_peak};
 use super::criteria::{limit, upper_check, yield_governing};
-use super::{CheckKind, CheckResult, Criteria, MinThickness, Utilisation};
-use crate::contact::{self, NormalStress, Request, StackContact};
+use super::{CheckKind, CheckResult, Criteria, MinThickness, ShearTail, Utilisation};
+use crate::contact::{self, Engine, NormalStress, Request, SlidingShear, StackContact};
 use crate::error::Error;
 use crate::layer::Elastic;
 use crate::layer::stack::{Layer, Stack};
@@ -52,6 +65,8 @@ pub struct StackDesign {
     pub pressure: f64,
     /// Substrate yield strength (Pa); required by substrate-yield.
     pub yield_strength: Option<f64>,
+    /// Sliding friction coefficient μ (0: static contact).
+    pub friction: f64,
     pub criteria: Criteria,
     /// Index of the layer whose minimum thickness is sought (0 = top).
     pub thickness_of: usize,
@@ -72,6 +87,10 @@ pub struct InterfaceEvaluation {
     /// The bond's shear strength (Pa) and P(|τ| > it).
     pub bond_strength: f64,
     pub bond_exceedance: f64,
+    /// The interface shear vector, when the vector rule is in force (friction or asked for).
+    pub sliding: Option<SlidingShear>,
+    /// The paper's half-normal peak of the static shear, beside a sliding `tau_peak`.
+    pub tau_peak_static: Option<Estimate>,
 }
 
 /// A stack check's result, with the interface (layer name) it concerns.
@@ -88,6 +107,8 @@ pub struct StackOutcome {
     /// p0·A0/A (Pa).
     pub mean_contact_pressure: Estimate,
     pub interfaces: Vec<InterfaceEvaluation>,
+    /// The rule every interface's `tau_peak` and `bond_exceedance` follow.
+    pub shear_tail: ShearTail,
     pub min_thickness: Option<MinThickness>,
     /// bond-shear at each interface, substrate-yield, min-thickness (those enabled).
     pub checks: Vec<StackCheck>,
@@ -194,10 +215,68 @@ impl StackChecker {
         }
     }
 
-    /// The stress checks and the interfaces' peaks from a contact on the stack.
+    /// The peak-shear rule in force ([`ShearTail::resolve`]).
+    pub fn shear_tail(&self) -> ShearTail {
+        ShearTail::resolve(self.design.criteria.shear_tail, self.design.friction)
+    }
+
+    /// The engine quantities with the layer `thickness_of` at `d`, under sliding (every
+    /// interface's shear vector too) when the design has friction or the vector rule is asked
+    /// for.
+    fn contact(
+        &self,
+        engine: &Engine,
+        d: f64,
+        req: Request,
+    ) -> Result<(StackContact, Option<Vec<SlidingShear>>), Error> {
+        let (stack, p0, mu) = (self.stack(d)?, self.design.pressure, self.design.friction);
+        if mu > 0.0 || self.shear_tail() == ShearTail::Vector {
+            engine.evaluate_stack_sliding(&stack, p0, mu, req)
+        } else {
+            Ok((engine.evaluate_stack(&stack, p0, req)?, None))
+        }
+    }
+
+    /// The peak interface shear below `layer` by the rule in force, with P(|τ| > its bond) when
+    /// `extras`: the paper's half-normal of τ_rms, or the vector's (`shear` given, found as `how`
+    /// says; the film's rule, [`super::Checker`]).
+    fn shear_peak(
+        &self,
+        layer: &StackLayer,
+        tau: Estimate,
+        shear: Option<&SlidingShear>,
+        extras: bool,
+        how: Peak,
+    ) -> Result<(Estimate, Option<f64>), Error> {
+        let c = &self.design.criteria;
+        let bond = layer.bond_strength;
+        match shear {
+            Some(s) => vector_peak(
+                s,
+                bond,
+                limit(bond, c.safety_factor),
+                c.epsilon,
+                extras,
+                how,
+            ),
+            None => {
+                let kt = contact::tau_peak(1.0, c.epsilon);
+                let exceedance = extras.then(|| contact::tau_exceedance(tau.value, bond));
+                Ok((tau.map(|t| kt * t, |_| kt), exceedance))
+            }
+        }
+    }
+
+    /// The stress checks and the interfaces' peaks from a contact on the stack (and every
+    /// interface's shear vector under the vector rule, its peak found as `how` says). The
+    /// interfaces' evaluations, with the exceedances and the static peaks beside a vector
+    /// one, only with `extras` (empty without: the search needs only the checks).
     fn assess(
         &self,
         c: &StackContact,
+        sliding: Option<&[SlidingShear]>,
+        extras: bool,
+        how: Peak,
     ) -> Result<(Estimate, Vec<InterfaceEvaluation>, Vec<StackCheck>), Error> {
         let d = &self.design;
         let (eps, p0, sf) = (d.criteria.epsilon, d.pressure, d.criteria.safety_factor);
@@ -217,8 +296,8 @@ impl StackChecker {
             let none = Estimate::exact(0.0);
             let tau = ic.tau_rms.unwrap_or(none);
             let sigma = ic.sigma_rms.unwrap_or(none);
-            let kt = contact::tau_peak(1.0, eps);
-            let tau_peak = tau.map(|t| kt * t, |_| kt);
+            let shear = sliding.map(|s| &s[k]);
+            let (tau_peak, exceedance) = self.shear_peak(layer, tau, shear, extras, how)?;
             let at = |s: f64| NormalStress { p0, sigma_rms: s };
             let mut sigma_peak = at(sigma.value).peak(eps);
             sigma_peak.status = Estimate::worst(sigma_peak.status, sigma.status);
@@ -245,6 +324,13 @@ impl StackChecker {
                     ),
                 });
             }
+            let Some(bond_exceedance) = exceedance else {
+                continue;
+            };
+            let tau_peak_static = match shear {
+                Some(_) => Some(self.shear_peak(layer, tau, None, false, how)?.0),
+                None => None,
+            };
             interfaces.push(InterfaceEvaluation {
                 name: layer.name.clone(),
                 depth: ic.depth,
@@ -253,20 +339,19 @@ impl StackChecker {
                 tau_peak,
                 sigma_peak,
                 bond_strength: layer.bond_strength,
-                bond_exceedance: contact::tau_exceedance(tau.value, layer.bond_strength),
+                bond_exceedance,
+                sliding: shear.copied(),
+                tau_peak_static,
             });
         }
         Ok((mean, interfaces, checks))
     }
 
-    /// Utilisation of the enabled stress checks with the layer `thickness_of` at `d`.
-    fn utilisation(&self, d: f64) -> Result<Utilisation, Error> {
-        let c = self.basis.search.evaluate_stack(
-            &self.stack(d)?,
-            self.design.pressure,
-            self.request(),
-        )?;
-        let (_, _, checks) = self.assess(&c)?;
+    /// Utilisation of the enabled stress checks with the layer `thickness_of` at `d`, the
+    /// vector rule's peaks found as `how` says.
+    fn utilisation(&self, d: f64, how: Peak) -> Result<Utilisation, Error> {
+        let (c, sliding) = self.contact(&self.basis.search, d, self.request())?;
+        let (_, _, checks) = self.assess(&c, sliding.as_deref(), false, how)?;
         Ok(super::checker::worst_utilisation(
             checks.iter().map(|c| &c.result),
         ))
@@ -276,12 +361,9 @@ impl StackChecker {
     /// the stress checks (those of [`run`](Self::run) at the design's thickness, to the last
     /// bit).
     pub fn evaluate(&self, d: f64) -> Result<StackRow, Error> {
-        let contact = self.basis.engine.evaluate_stack(
-            &self.stack(d)?,
-            self.design.pressure,
-            Request::all(),
-        )?;
-        let (mean_contact_pressure, interfaces, checks) = self.assess(&contact)?;
+        let (contact, sliding) = self.contact(&self.basis.engine, d, Request::all())?;
+        let (mean_contact_pressure, interfaces, checks) =
+            self.assess(&contact, sliding.as_deref(), true, Peak::Solved)?;
         Ok(StackRow {
             thickness: d,
             contact,
@@ -306,12 +388,9 @@ impl StackChecker {
     /// search on, [`super::stack_levers`]).
     pub fn stress_checks_pass(&self) -> Result<bool, Error> {
         let d = &self.design;
-        let c = self.basis.engine.evaluate_stack(
-            &self.stack(d.layers[d.thickness_of].thickness)?,
-            d.pressure,
-            self.request(),
-        )?;
-        let (_, _, checks) = self.assess(&c)?;
+        let thickness = d.layers[d.thickness_of].thickness;
+        let (c, sliding) = self.contact(&self.basis.engine, thickness, self.request())?;
+        let (_, _, checks) = self.assess(&c, sliding.as_deref(), false, Peak::Solved)?;
         Ok(checks.iter().all(|c| c.result.pass))
     }
 
@@ -321,21 +400,23 @@ impl StackChecker {
     }
 
     /// The smallest thickness of the layer `thickness_of` above which every enabled stress
-    /// check passes, the others fixed.
+    /// check passes, the others fixed (under sliding as the film's, [`super::min_thickness`],
+    /// "Under sliding", the vector peaks one step from the bond limits).
     pub fn min_thickness(&self) -> Result<MinThickness, Error> {
-        self.basis.min_thickness(|d| self.utilisation(d))
+        let d = &self.design;
+        self.basis
+            .min_thickness(d.friction, d.criteria.epsilon, |t| {
+                self.utilisation(t, Peak::FromLimit)
+            })
     }
 
     /// The full check at the design's thicknesses.
     pub fn run(&self) -> Result<StackOutcome, Error> {
         let d = &self.design;
-        let req = Request::all();
-        let contact = self.basis.engine.evaluate_stack(
-            &self.stack(d.layers[d.thickness_of].thickness)?,
-            d.pressure,
-            req,
-        )?;
-        let (mean, interfaces, mut checks) = self.assess(&contact)?;
+        let thickness = d.layers[d.thickness_of].thickness;
+        let (contact, sliding) = self.contact(&self.basis.engine, thickness, Request::all())?;
+        let (mean, interfaces, mut checks) =
+            self.assess(&contact, sliding.as_deref(), true, Peak::Solved)?;
         let mut warnings = Vec::new();
         let min_thickness = if d.criteria.checks.min_thickness {
             let m = self.min_thickness()?;
@@ -373,6 +454,7 @@ impl StackChecker {
             contact,
             mean_contact_pressure: mean,
             interfaces,
+            shear_tail: self.shear_tail(),
             min_thickness,
             checks,
             pass,

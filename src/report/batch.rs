@@ -139,6 +139,42 @@ pub struct InterfaceRecord {
     pub sigma_peak_pa_err: f64,
     pub bond_strength_pa: f64,
     pub bond_exceedance: f64,
+    /// Under the vector shear rule: the interface shear's mean μ·p0, the rms of its x and y
+    /// fluctuations and the paper's half-normal peak of the static shear (Pa).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mean_interface_shear_pa: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mean_interface_shear_pa_err: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tau_x_rms_interface_pa: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tau_x_rms_interface_pa_err: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tau_y_rms_interface_pa: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tau_y_rms_interface_pa_err: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tau_peak_static_pa: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tau_peak_static_pa_err: Option<f64>,
+}
+
+impl InterfaceRecord {
+    /// The record with the sliding fields of the interface `i` (under the vector rule).
+    fn with_sliding(mut self, i: &crate::check::stack::InterfaceEvaluation) -> Self {
+        if let Some(s) = &i.sliding {
+            (
+                self.mean_interface_shear_pa,
+                self.mean_interface_shear_pa_err,
+            ) = split(Some(s.mean));
+            (self.tau_x_rms_interface_pa, self.tau_x_rms_interface_pa_err) =
+                split(Some(s.tau_x_rms));
+            (self.tau_y_rms_interface_pa, self.tau_y_rms_interface_pa_err) =
+                split(Some(s.tau_y_rms));
+            (self.tau_peak_static_pa, self.tau_peak_static_pa_err) = split(i.tau_peak_static);
+        }
+        self
+    }
 }
 
 /// A check as a record, at `at` in a stack.
@@ -297,23 +333,34 @@ impl Record {
             (r.tau_rms_interface_pa, r.tau_rms_interface_pa_err) = split(Some(b.tau_rms));
             (r.tau_peak_pa, r.tau_peak_pa_err) = split(Some(b.tau_peak));
             (r.sigma_peak_interface_pa, r.sigma_peak_interface_pa_err) = split(Some(b.sigma_peak));
+            if let Some(s) = &b.sliding {
+                r.friction = Some(s.friction);
+                (r.mean_interface_shear_pa, r.mean_interface_shear_pa_err) = split(Some(s.mean));
+                (r.tau_x_rms_interface_pa, r.tau_x_rms_interface_pa_err) = split(Some(s.tau_x_rms));
+                (r.tau_y_rms_interface_pa, r.tau_y_rms_interface_pa_err) = split(Some(s.tau_y_rms));
+                (r.tau_peak_static_pa, r.tau_peak_static_pa_err) = split(b.tau_peak_static);
+            }
         }
         r.interfaces = Some(
             o.interfaces
                 .iter()
-                .map(|i| InterfaceRecord {
-                    name: i.name.clone(),
-                    depth_m: i.depth,
-                    sigma_rms_pa: i.sigma_rms.value,
-                    sigma_rms_pa_err: i.sigma_rms.err,
-                    tau_rms_pa: i.tau_rms.value,
-                    tau_rms_pa_err: i.tau_rms.err,
-                    tau_peak_pa: i.tau_peak.value,
-                    tau_peak_pa_err: i.tau_peak.err,
-                    sigma_peak_pa: i.sigma_peak.value,
-                    sigma_peak_pa_err: i.sigma_peak.err,
-                    bond_strength_pa: i.bond_strength,
-                    bond_exceedance: i.bond_exceedance,
+                .map(|i| {
+                    InterfaceRecord {
+                        name: i.name.clone(),
+                        depth_m: i.depth,
+                        sigma_rms_pa: i.sigma_rms.value,
+                        sigma_rms_pa_err: i.sigma_rms.err,
+                        tau_rms_pa: i.tau_rms.value,
+                        tau_rms_pa_err: i.tau_rms.err,
+                        tau_peak_pa: i.tau_peak.value,
+                        tau_peak_pa_err: i.tau_peak.err,
+                        sigma_peak_pa: i.sigma_peak.value,
+                        sigma_peak_pa_err: i.sigma_peak.err,
+                        bond_strength_pa: i.bond_strength,
+                        bond_exceedance: i.bond_exceedance,
+                        ..InterfaceRecord::default()
+                    }
+                    .with_sliding(i)
                 })
                 .collect(),
         );
@@ -544,8 +591,8 @@ const TAIL: &[Column] = &[
 ];
 
 /// The flat columns of one interface of a layer stack, each name after `interface<k>_` (k from
-/// 1, the top layer's): its record's fields, then its bond-shear check's limit, utilisation,
-/// margin and pass.
+/// 1, the top layer's): its record's static fields, then its bond-shear check's limit,
+/// utilisation, margin and pass, then its sliding fields (empty under the paper's rule).
 pub type InterfaceColumn = (&'static str, fn(&Record, &InterfaceRecord) -> Cell);
 
 /// The bond-shear check at an interface.
@@ -589,6 +636,30 @@ pub const INTERFACE_COLUMNS: &[InterfaceColumn] = &[
     }),
     ("bond_shear_pass", |r, i| {
         Cell::Text(bond_at(r, i).map(|c| c.pass.to_string()))
+    }),
+    ("mean_interface_shear_pa", |_, i| {
+        Cell::Number(i.mean_interface_shear_pa)
+    }),
+    ("mean_interface_shear_pa_err", |_, i| {
+        Cell::Number(i.mean_interface_shear_pa_err)
+    }),
+    ("tau_x_rms_interface_pa", |_, i| {
+        Cell::Number(i.tau_x_rms_interface_pa)
+    }),
+    ("tau_x_rms_interface_pa_err", |_, i| {
+        Cell::Number(i.tau_x_rms_interface_pa_err)
+    }),
+    ("tau_y_rms_interface_pa", |_, i| {
+        Cell::Number(i.tau_y_rms_interface_pa)
+    }),
+    ("tau_y_rms_interface_pa_err", |_, i| {
+        Cell::Number(i.tau_y_rms_interface_pa_err)
+    }),
+    ("tau_peak_static_pa", |_, i| {
+        Cell::Number(i.tau_peak_static_pa)
+    }),
+    ("tau_peak_static_pa_err", |_, i| {
+        Cell::Number(i.tau_peak_static_pa_err)
     }),
 ];
 

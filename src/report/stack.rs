@@ -11,11 +11,21 @@
 //! `tau_rms_pa`, `tau_peak_pa`, `sigma_peak_pa` (each with `_err`), `bond_strength_pa`,
 //! `bond_exceedance`; each check names where it applies (`at`: a layer, or `substrate`); the
 //! scene echo lists the layers (`scene.layers`) and `thickness_of`.
+//!
+//! Under the vector shear rule (sliding friction, or asked for) the report carries, as a film's,
+//! `shear_tail` and `friction`, and every interface the film's sliding keys
+//! `mean_interface_shear_pa`, `tau_x_rms_interface_pa`, `tau_y_rms_interface_pa` and
+//! `tau_peak_static_pa` (each with `_err`; the top level those of the bottom interface);
+//! `tau_peak_pa` and `bond_exceedance` are then the vector's and `sigma_rms_pa` includes the
+//! friction-driven part. The table says which rule the peaks follow and lists the shear vector
+//! at every interface. (A stack's normal–tangential coupling, the film's `friction_coupling`,
+//! is not evaluated.)
 
 use super::check::{check_cells, check_json, put, put_min_thickness};
 use super::{Format, batch, margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
+use crate::check::ShearTail;
 use crate::check::levers::Lever;
-use crate::check::stack::StackOutcome;
+use crate::check::stack::{InterfaceEvaluation, StackOutcome};
 use crate::error::Error;
 use crate::pipeline::Judged;
 use crate::prec::Estimate;
@@ -101,6 +111,11 @@ pub fn json(scene: &Scene, o: &StackOutcome, levers: &[Lever]) -> Value {
     put(&mut m, "tau_peak_pa", Some(bottom.tau_peak));
     put(&mut m, "sigma_peak_interface_pa", Some(bottom.sigma_peak));
     put(&mut m, "e_eff_over_e_film", c.e_eff_over_e_film);
+    if let Some(s) = &bottom.sliding {
+        m.insert("shear_tail".into(), json!(o.shear_tail.name()));
+        m.insert("friction".into(), json!(s.friction));
+        put_sliding(&mut m, bottom);
+    }
     put_min_thickness(&mut m, o.min_thickness.as_ref());
     m.insert(
         "governing_check".into(),
@@ -119,6 +134,7 @@ pub fn json(scene: &Scene, o: &StackOutcome, levers: &[Lever]) -> Value {
             put(&mut v, "sigma_peak_pa", Some(i.sigma_peak));
             v.insert("bond_strength_pa".into(), json!(i.bond_strength));
             v.insert("bond_exceedance".into(), json!(i.bond_exceedance));
+            put_sliding(&mut v, i);
             Value::Object(v)
         })
         .collect();
@@ -153,6 +169,49 @@ pub fn json(scene: &Scene, o: &StackOutcome, levers: &[Lever]) -> Value {
         }),
     );
     Value::Object(m)
+}
+
+/// The film's sliding keys of an interface under the vector rule (none otherwise).
+fn put_sliding(m: &mut Map<String, Value>, i: &InterfaceEvaluation) {
+    if let Some(s) = &i.sliding {
+        put(m, "mean_interface_shear_pa", Some(s.mean));
+        put(m, "tau_x_rms_interface_pa", Some(s.tau_x_rms));
+        put(m, "tau_y_rms_interface_pa", Some(s.tau_y_rms));
+        put(m, "tau_peak_static_pa", i.tau_peak_static);
+    }
+}
+
+/// The rule of the peaks and, under the vector rule, the shear vector at every interface
+/// (empty for the paper's rule).
+fn sliding_table(scene: &Scene, o: &StackOutcome) -> String {
+    if o.shear_tail != ShearTail::Vector {
+        return String::new();
+    }
+    let mut out = wrap(&format!(
+        "tau_peak and P(|tau| > bond) by the vector rule: |tau| of (mu·p0 + X, Y) at exceedance \
+         epsilon, mu = {} (uncoupled approximation: the pressure is that of frictionless \
+         contact; sigma_rms includes the friction-driven part)",
+        scene.friction
+    ));
+    out.push('\n');
+    let mut t = table(&[
+        "interface below",
+        "mean shear μ·p0 [MPa]",
+        "τ_x,rms [MPa]",
+        "τ_y,rms [MPa]",
+        "τ_peak static [MPa]",
+    ]);
+    for i in &o.interfaces {
+        let Some(s) = &i.sliding else { continue };
+        t.add_row([
+            i.name.clone(),
+            mpa(s.mean.value),
+            pm_mpa(&s.tau_x_rms),
+            pm_mpa(&s.tau_y_rms),
+            i.tau_peak_static.as_ref().map_or("-".into(), pm_mpa),
+        ]);
+    }
+    out + &format!("{t}\n")
 }
 
 /// An estimate in MPa with its error ("0.2216 ± 2.4e-11").
@@ -231,6 +290,7 @@ pub fn human(scene: &Scene, o: &StackOutcome, levers: &[Lever]) -> String {
         ]);
     }
     out += &format!("{t}\n");
+    out += &sliding_table(scene, o);
     let mut k = table(&[
         "check",
         "at",

@@ -188,6 +188,7 @@ impl Scene {
             substrate: self.substrate.elastic,
             pressure: self.pressure,
             yield_strength: self.substrate.yield_strength,
+            friction: self.friction,
             criteria: self.criteria,
             thickness_of: self.thickness_of,
         }

@@ -40,6 +40,7 @@ mod schema;
 mod sliding;
 mod stack;
 mod stack_exact;
+mod stack_friction;
 mod stack_outputs;
 mod stack_ranges;
 mod stack_robust;

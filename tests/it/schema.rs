@@ -155,6 +155,13 @@ fn check_json_follows_its_schema() {
         &["check", "examples/specs/paper-film-too-thin.toml"],
         &["check", "examples/rubber-epoxy-primer-steel.toml"],
         &["check", "examples/ptfe-rubber-steel.toml"],
+        &["check", "examples/ptfe-rubber-steel-sliding.toml"],
+        &[
+            "check",
+            "examples/rubber-epoxy-primer-steel.toml",
+            "--shear-tail",
+            "vector",
+        ],
         &[
             "check",
             "examples/paper-rubber-on-steel.toml",

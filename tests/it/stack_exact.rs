@@ -53,6 +53,7 @@ fn stack(layers: Vec<StackLayer>, thickness_of: usize, checks: Checks) -> StackD
         substrate: el(200e9, 0.3),
         pressure: 0.1e6,
         yield_strength: Some(1e12),
+        friction: 0.0,
         criteria: criteria(checks),
         thickness_of,
     }

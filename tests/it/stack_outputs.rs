@@ -18,6 +18,7 @@ use std::collections::BTreeMap;
 
 const PRIMER: &str = "examples/rubber-epoxy-primer-steel.toml";
 const PTFE: &str = "examples/ptfe-rubber-steel.toml";
+const SLIDING: &str = "examples/ptfe-rubber-steel-sliding.toml";
 
 fn out(args: &[&str]) -> std::process::Output {
     let o = run(args);
@@ -96,7 +97,7 @@ fn row_matches(head: &[String], row: &[String], want: &BTreeMap<String, Value>, 
 #[test]
 fn stack_csv_row_is_its_json() {
     let film_head = parse_csv(&out(&["check", "examples/specs/", "--format", "csv"]).stdout).0;
-    for scene in [PRIMER, PTFE] {
+    for scene in [PRIMER, PTFE, SLIDING] {
         let j = json(&out(&["check", scene, "--format", "json"]));
         valid(coatcheck::report::CHECK_SCHEMA, &j, scene);
         let (head, rows) = parse_csv(&out(&["check", scene, "--format", "csv"]).stdout);
@@ -106,7 +107,7 @@ fn stack_csv_row_is_its_json() {
             "{scene}: the film's columns first"
         );
         let n = j["interfaces"].as_array().unwrap().len();
-        assert_eq!(head.len(), film_head.len() + 1 + 16 * n, "{scene}");
+        assert_eq!(head.len(), film_head.len() + 1 + 24 * n, "{scene}");
         assert_eq!(rows.len(), 1);
         let mut want = flatten_stack(&j);
         want.insert("scene".into(), scene.into());
@@ -194,6 +195,7 @@ fn batch_of_films_and_stacks() {
     for f in [
         PRIMER,
         PTFE,
+        SLIDING,
         "examples/paper-rubber-on-steel.toml",
         "examples/specs/paper-film-too-thin.toml",
     ] {
@@ -204,9 +206,9 @@ fn batch_of_films_and_stacks() {
     let j = json(&out(&["check", d, "--format", "json"]));
     valid(coatcheck::report::BATCH_SCHEMA, &j, "batch");
     let records = j["scenes"].as_array().unwrap();
-    assert_eq!(records.len(), 4);
+    assert_eq!(records.len(), 5);
     let (head, rows) = parse_csv(&out(&["check", d, "--format", "csv"]).stdout);
-    assert_eq!(rows.len(), 4);
+    assert_eq!(rows.len(), 5);
     for (row, rec) in rows.iter().zip(records) {
         let scene = rec["scene"].as_str().unwrap();
         let mut want = if rec.get("interfaces").is_some() {
@@ -384,6 +386,7 @@ fn rubber_on_primer(d: f64, bonds: (f64, f64), yield_strength: f64, pressure: f6
         substrate: Elastic::new(200e9, 0.3).unwrap(),
         pressure,
         yield_strength: Some(yield_strength),
+        friction: 0.0,
         criteria: Criteria {
             epsilon: 1e-6,
             checks: Checks::all(),

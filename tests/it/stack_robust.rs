@@ -297,6 +297,7 @@ fn one_layer_stack_robust_is_the_films() {
         substrate: steel.elastic,
         pressure: 2e6,
         yield_strength: steel.yield_strength,
+        friction: 0.0,
         criteria: Criteria::default(),
         thickness_of: 0,
     };
@@ -371,6 +372,7 @@ fn a_deep_stack_holds_its_least_influential_ranges() {
         substrate: steel.elastic,
         pressure: 2e6,
         yield_strength: steel.yield_strength,
+        friction: 0.0,
         criteria: Criteria::default(),
         thickness_of: 0,
     };

@@ -335,6 +335,7 @@ fn split_layer_min_thickness() {
         substrate: steel,
         pressure: 1e5,
         yield_strength: Some(2.5e8),
+        friction: 0.0,
         criteria,
         thickness_of: 0,
     };

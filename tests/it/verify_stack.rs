@@ -79,6 +79,7 @@ pub(crate) fn design(layers: Vec<StackLayer>, p0: f64, epsilon: f64) -> StackDes
         substrate: el(2e11, 0.3),
         pressure: p0,
         yield_strength: Some(2.5e8),
+        friction: 0.0,
         criteria: criteria(epsilon),
         thickness_of: 0,
     }
