@@ -31,7 +31,9 @@ use crate::pipeline::StackExact;
 use crate::prec::Estimate;
 use crate::verify::Row;
 use crate::verify::boundary::BoundaryDecision;
-use crate::verify::sliding::{ExactSliding, SlidingVerification};
+use crate::verify::sliding::{
+    ExactSliding, SLIDING_QUANTILES, SlidingVerification, vector_quantile,
+};
 use crate::verify_stack::{StackComparison, StackVerification};
 use serde_json::{Map, Value, json};
 use std::io::Write;
@@ -387,18 +389,42 @@ fn interface_rows(o: &StackOutcome, v: &StackVerification, k: usize) -> Vec<Chec
     ]
 }
 
-/// Interface k's shear vector under sliding friction (exact, with Persson's where the outcome
-/// carries it: not yet on a stack, whose Persson checker is static).
-fn sliding_rows(s: &SlidingVerification) -> Vec<CheckRow> {
+/// Interface k's shear vector under sliding friction: the exact values beside Persson's
+/// (`persson`, interface k's shear vector from the stack checker under sliding; his |τ|
+/// quantiles by the vector rule, [`vector_quantile`], which cannot fail where the checker's own
+/// vector peak of the same shear succeeded).
+fn sliding_rows(s: &SlidingVerification, persson: Option<&SlidingShear>) -> Vec<CheckRow> {
     let [q50, q99, q999] = s.quantiles;
+    let [p50, p99, p999] = SLIDING_QUANTILES;
+    let quantile = |prob: f64| persson.and_then(|p| vector_quantile(p, prob).ok());
     vec![
-        ("mean tau_x", "mean_interface_shear_pa", None, s.mean_x),
-        ("mean tau_y", "mean_interface_shear_y_pa", None, s.mean_y),
-        ("tau_x rms", "tau_x_rms_interface_pa", None, s.tau_x_rms),
-        ("tau_y rms", "tau_y_rms_interface_pa", None, s.tau_y_rms),
-        ("|tau| q0.5", "tau_abs_q50_pa", None, q50),
-        ("|tau| q0.99", "tau_abs_q99_pa", None, q99),
-        ("|tau| q0.999", "tau_abs_q999_pa", None, q999),
+        (
+            "mean tau_x",
+            "mean_interface_shear_pa",
+            persson.map(|p| p.mean),
+            s.mean_x,
+        ),
+        (
+            "mean tau_y",
+            "mean_interface_shear_y_pa",
+            persson.map(|_| Estimate::exact(0.0)),
+            s.mean_y,
+        ),
+        (
+            "tau_x rms",
+            "tau_x_rms_interface_pa",
+            persson.map(|p| p.tau_x_rms),
+            s.tau_x_rms,
+        ),
+        (
+            "tau_y rms",
+            "tau_y_rms_interface_pa",
+            persson.map(|p| p.tau_y_rms),
+            s.tau_y_rms,
+        ),
+        ("|tau| q0.5", "tau_abs_q50_pa", quantile(p50), q50),
+        ("|tau| q0.99", "tau_abs_q99_pa", quantile(p99), q99),
+        ("|tau| q0.999", "tau_abs_q999_pa", quantile(p999), q999),
         ("|tau| max", "tau_abs_max_pa", None, s.max),
     ]
 }
@@ -407,12 +433,13 @@ fn sliding_rows(s: &SlidingVerification) -> Vec<CheckRow> {
 /// friction and the approximation.
 fn sliding_object(
     s: &SlidingVerification,
+    persson: Option<&SlidingShear>,
     put: impl Fn(&mut Map<String, Value>, Vec<CheckRow>),
 ) -> Value {
     let mut m = Map::new();
     m.insert("friction".into(), json!(s.friction));
     m.insert("approximation".into(), json!("uncoupled"));
-    put(&mut m, sliding_rows(s));
+    put(&mut m, sliding_rows(s, persson));
     Value::Object(m)
 }
 
@@ -519,7 +546,13 @@ pub fn check_table(x: &StackExact, o: &StackOutcome) -> String {
     for (k, i) in v.interfaces.iter().enumerate() {
         let at = r.map(|r| move |key: &str| r.interface_spread(k, key));
         let mut rows = interface_rows(o, v, k);
-        rows.extend(i.sliding.as_ref().map(sliding_rows).unwrap_or_default());
+        let persson = o.interfaces[k].sliding.as_ref();
+        rows.extend(
+            i.sliding
+                .as_ref()
+                .map(|s| sliding_rows(s, persson))
+                .unwrap_or_default(),
+        );
         add_rows(&mut t, &i.name, rows, at.as_ref().map(|f| f as &Spread<'_>));
     }
     out += &format!("{t}\n");
@@ -656,7 +689,10 @@ pub fn check_json(x: &StackExact, o: &StackOutcome) -> Value {
             e.insert("shear_abs_pa".into(), stats_json(&i.shear));
             e.insert("peaks_resolved".into(), json!(i.tau_peak.resolved));
             if let Some(sl) = &i.sliding {
-                e.insert("sliding".into(), sliding_object(sl, put_rows));
+                e.insert(
+                    "sliding".into(),
+                    sliding_object(sl, o.interfaces[k].sliding.as_ref(), put_rows),
+                );
             }
             Value::Object(e)
         })
@@ -742,7 +778,7 @@ pub fn exact_json(x: &StackExact, o: &StackOutcome) -> Value {
                 r.and_then(|r| r.interface_spread(k, key))
             });
             if let Some(sl) = &i.sliding {
-                let sliding = sliding_object(sl, |m, rows| {
+                let sliding = sliding_object(sl, o.interfaces[k].sliding.as_ref(), |m, rows| {
                     put_exact_rows(m, rows, |key| r.and_then(|r| r.interface_spread(k, key)))
                 });
                 e.insert("sliding".into(), sliding);
