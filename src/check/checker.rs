@@ -4,7 +4,7 @@
 
 use super::basis::{Basis, Wording, check_warnings, finite_guard, governing, min_thickness_check};
 use super::criteria::{limit, upper_check, yield_governing};
-use super::min_thickness::search_min_thickness_spread;
+use super::min_thickness::{decision_levels, search_min_thickness_spread};
 use super::*;
 use crate::contact::{self, Contact, Engine, NormalStress, Request, SlidingShear};
 use crate::error::Error;
@@ -121,7 +121,12 @@ impl Checker {
                 let v = ShearVector::new(s.mean.value, s.tau_x_rms.value, s.tau_y_rms.value)?;
                 let mut peak = match how {
                     Peak::Solved => v.peak(eps)?,
-                    Peak::FromLimit => v.peak_from(self.limit(d.bond_strength), eps)?,
+                    Peak::FromLimit => read_vector_peak(
+                        &v,
+                        self.limit(d.bond_strength),
+                        eps,
+                        &decision_levels(self.spread()),
+                    )?,
                 };
                 let rel = s.tau_x_rms.rel_err().max(s.tau_y_rms.rel_err());
                 peak.err += rel * peak.value;
@@ -251,12 +256,17 @@ impl Checker {
     /// [`super::min_thickness`], "Under sliding").
     fn search(&self, how: Peak) -> Result<MinThickness, Error> {
         let (lo, hi) = self.basis.scan_range();
-        let spread = if self.design.friction > 0.0 {
+        search_min_thickness_spread(lo, hi, self.spread(), |d| self.utilisation(d, how))
+    }
+
+    /// How much more than its rms the shear peak may fall between a failing point and the
+    /// better end of a widened step: [`crate::tail::anisotropy_spread`] under friction, else 1.
+    fn spread(&self) -> f64 {
+        if self.design.friction > 0.0 {
             crate::tail::anisotropy_spread(self.design.criteria.epsilon)
         } else {
             1.0
-        };
-        search_min_thickness_spread(lo, hi, spread, |d| self.utilisation(d, how))
+        }
     }
 
     /// The full check at the design's thickness: all quantities, the enabled checks, d_min.
@@ -347,8 +357,33 @@ enum Peak {
     /// One step from the bond limit ([`ShearVector::peak_from`]): on the same side of the
     /// limit as the peak (so the same pass or fail) and close to it near the limit, where the
     /// minimum-thickness search refines its crossing; one evaluation of the tail instead of a
-    /// root solve's several.
+    /// root solve's several. Solved where the step could be on the wrong side of one of the
+    /// search's other levels ([`read_vector_peak`]).
     FromLimit,
+}
+
+/// The minimum-thickness search's read of the vector peak `v` at exceedance `eps` against
+/// `limit` (module docs of `min_thickness`, "Under sliding"): one Newton step from the limit
+/// ([`ShearVector::peak_from`]), on the same side of the limit as the peak, except where its
+/// utilisation (read/limit) lies below one of `levels` by less than
+/// [`crate::tail::one_step_shortfall`]: there the peak itself might be above that level, and it
+/// is solved ([`ShearVector::peak`]). So the read is on the same side of every level as the
+/// peak.
+pub(super) fn read_vector_peak(
+    v: &ShearVector,
+    limit: f64,
+    eps: f64,
+    levels: &[f64],
+) -> Result<Estimate, Error> {
+    let one = v.peak_from(limit, eps)?;
+    let (u, keep) = (
+        one.value / limit,
+        1.0 - crate::tail::one_step_shortfall(eps),
+    );
+    if levels.iter().any(|&t| u < t && u >= keep * t) {
+        return v.peak(eps);
+    }
+    Ok(one)
 }
 
 /// What the roughness data say about a coating of `thickness` (m), named `what` ("film
