@@ -106,7 +106,7 @@
 //! ε = 0.0101, where the thresholds are the bound itself, the step would be taken over a
 //! failing band (test `one_step_reads_near_a_threshold_are_solved`, which constructs one).
 //! So the search's reads are exact with respect to every level it compares with
-//! ([`decision_levels`]: the widened steps' thresholds and [`PEAK_GUARD`]): where the one-step
+//! (`decision_levels`: the widened steps' thresholds and [`PEAK_GUARD`]): where the one-step
 //! read lies below a level t by less than the shortfall, read ≥ (1 − shortfall)·t, the true
 //! utilisation might be above t and the peak is solved instead (`checker::read_vector_peak`);
 //! below that, the true utilisation is below t. The start's comparison with 1 −
