@@ -82,11 +82,7 @@ impl Basis {
         utilisation: impl FnMut(f64) -> Result<Utilisation, Error>,
     ) -> Result<MinThickness, Error> {
         let (lo, hi) = self.scan_range();
-        let spread = if friction > 0.0 {
-            crate::tail::anisotropy_spread(epsilon)
-        } else {
-            1.0
-        };
+        let spread = peak_spread(friction, epsilon);
         super::min_thickness::search_min_thickness_spread(lo, hi, spread, utilisation)
     }
 
@@ -126,6 +122,17 @@ impl Basis {
         }
         w.extend(data_warnings(wording.what, depth, self.h_rms, self.q_low));
         w
+    }
+}
+
+/// How much more than its rms the shear peak may fall between a failing point and the better
+/// end of a widened step of the minimum-thickness search: [`crate::tail::anisotropy_spread`]
+/// at exceedance `epsilon` under `friction`, else 1 ([`super::min_thickness`], "Under sliding").
+pub(super) fn peak_spread(friction: f64, epsilon: f64) -> f64 {
+    if friction > 0.0 {
+        crate::tail::anisotropy_spread(epsilon)
+    } else {
+        1.0
     }
 }
 

@@ -4,6 +4,7 @@
 
 use super::basis::{Basis, Wording, check_warnings, finite_guard, governing, min_thickness_check};
 use super::criteria::{limit, upper_check, yield_governing};
+use super::min_thickness::decision_levels;
 use super::*;
 use crate::contact::{self, Contact, Engine, NormalStress, Request, SlidingShear};
 use crate::error::Error;
@@ -120,7 +121,7 @@ impl Checker {
                 s,
                 d.bond_strength,
                 self.limit(d.bond_strength),
-                eps,
+                (eps, d.friction),
                 extras,
                 how,
             ),
@@ -330,19 +331,25 @@ impl Checker {
 /// The vector rule's peak interface shear at exceedance `eps` for the shear vector `s`, found
 /// as `how` says (the rms errors enter as their largest relative error times the peak), with
 /// P(|τ| > `bond_strength`) when `extras`; `limit` is the bond's limit (the start of
-/// [`Peak::FromLimit`]'s step). A film's and a layer stack's interfaces alike.
+/// [`Peak::FromLimit`]'s step, read against the search's levels for the design's `friction`,
+/// [`read_vector_peak`]). A film's and a layer stack's interfaces alike.
 pub(super) fn vector_peak(
     s: &SlidingShear,
     bond_strength: f64,
     limit: f64,
-    eps: f64,
+    (eps, friction): (f64, f64),
     extras: bool,
     how: Peak,
 ) -> Result<(Estimate, Option<f64>), Error> {
     let v = ShearVector::new(s.mean.value, s.tau_x_rms.value, s.tau_y_rms.value)?;
     let mut peak = match how {
         Peak::Solved => v.peak(eps)?,
-        Peak::FromLimit => v.peak_from(limit, eps)?,
+        Peak::FromLimit => read_vector_peak(
+            &v,
+            limit,
+            eps,
+            &decision_levels(super::basis::peak_spread(friction, eps)),
+        )?,
     };
     let rel = s.tau_x_rms.rel_err().max(s.tau_y_rms.rel_err());
     peak.err += rel * peak.value;
@@ -362,8 +369,33 @@ pub(super) enum Peak {
     /// One step from the bond limit ([`ShearVector::peak_from`]): on the same side of the
     /// limit as the peak (so the same pass or fail) and close to it near the limit, where the
     /// minimum-thickness search refines its crossing; one evaluation of the tail instead of a
-    /// root solve's several.
+    /// root solve's several. Solved where the step could be on the wrong side of one of the
+    /// search's other levels ([`read_vector_peak`]).
     FromLimit,
+}
+
+/// The minimum-thickness search's read of the vector peak `v` at exceedance `eps` against
+/// `limit` (module docs of `min_thickness`, "Under sliding"): one Newton step from the limit
+/// ([`ShearVector::peak_from`]), on the same side of the limit as the peak, except where its
+/// utilisation (read/limit) lies below one of `levels` by less than
+/// [`crate::tail::one_step_shortfall`]: there the peak itself might be above that level, and it
+/// is solved ([`ShearVector::peak`]). So the read is on the same side of every level as the
+/// peak.
+pub(super) fn read_vector_peak(
+    v: &ShearVector,
+    limit: f64,
+    eps: f64,
+    levels: &[f64],
+) -> Result<Estimate, Error> {
+    let one = v.peak_from(limit, eps)?;
+    let (u, keep) = (
+        one.value / limit,
+        1.0 - crate::tail::one_step_shortfall(eps),
+    );
+    if levels.iter().any(|&t| u < t && u >= keep * t) {
+        return v.peak(eps);
+    }
+    Ok(one)
 }
 
 /// What the roughness data say about a coating of `thickness` (m), named `what` ("film

@@ -95,14 +95,23 @@
 //! falls and f_t has the property above, so one end has σ_i ≥ (c/√2)σ* and its peak at least
 //! (c/√2) of the failing one, without ρ.
 //!
-//! Open: the search judges a step end by [`crate::tail::ShearVector::peak_from`], one Newton
-//! step in φ = √(−2 ln P) from min(limit, τ_hi), not by τ* itself. Its pass/fail is exact, but φ
-//! is not convex everywhere above τ*, and the step can land below τ*: by up to 0.15 of τ*
-//! (0.076 at ε = 1e-6, 0.078 at 1e-300, 0.15 at 0.45; test
-//! `one_step_peak_estimates_can_under_state_the_peak`). An end
-//! whose estimate is under-stated that much could take a widened step the argument above does
-//! not cover; closing it needs the estimate bounded from below (a second step where an end
-//! lies within that factor of its threshold, or the spread divided by 1 − 0.15).
+//! The search reads the vector peak at a thickness by one Newton step in φ = √(−2 ln P) from
+//! L = min(limit, τ_hi) ([`crate::tail::ShearVector::peak_from`]), not by τ* itself. That read
+//! is on the same side of the limit (u = 1) as τ*, but φ is not convex everywhere above τ*, so
+//! it can land below τ*: by at most [`crate::tail::one_step_shortfall`] = 0.06/ln²ε of it when
+//! sy ≤ sx, as here (measured over m/sx, sy/sx ≤ 1, every start and ε from 1e-300 to 0.49:
+//! 1.2e-4 at ε = 1e-6, 1.2e-3 at 1e-2, 0.025 at 0.3, 0.064 at 0.49; test
+//! `one_step_peaks_fall_short_of_the_peak_by_at_most_the_bound`). An end whose true
+//! utilisation is just above a widened step's threshold could then read below it, and above
+//! ε = 0.0101, where the thresholds are the bound itself, the step would be taken over a
+//! failing band (test `one_step_reads_near_a_threshold_are_solved`, which constructs one).
+//! So the search's reads are exact with respect to every level it compares with
+//! (`decision_levels`: the widened steps' thresholds and [`PEAK_GUARD`]): where the one-step
+//! read lies below a level t by less than the shortfall, read ≥ (1 − shortfall)·t, the true
+//! utilisation might be above t and the peak is solved instead (`checker::read_vector_peak`);
+//! below that, the true utilisation is below t. The start's comparison with 1 −
+//! [`THICK_SLACK`] is left to the one-step read: from a level within 1e-5 of τ* it falls short
+//! by at most 2.3e-11 (same test), far inside the slack's margin over the A/A0 drift of step 1.
 //!
 //! Each evaluation during the search requests only what the enabled checks need (bond-shear:
 //! τ_rms; substrate-yield: A/A0 and σ_rms at the interface), reusing one [`crate::contact::Engine`] per spectrum.
@@ -293,6 +302,18 @@ fn scan_step(above: Option<Sample>, cur: Sample, h: f64, spread: f64) -> (f64, f
 /// w.level/(√2·spread) where that is smaller.
 pub(super) fn wide_threshold(w: &WideStep, spread: f64) -> f64 {
     w.below.min(w.level / (std::f64::consts::SQRT_2 * spread))
+}
+
+/// The utilisation levels, other than 1, that the search compares samples with at `spread`
+/// (module docs, "Under sliding"): the widened steps' thresholds ([`wide_threshold`]) and
+/// [`PEAK_GUARD`]. A utilisation that is an estimate must lie on the same side of each of them
+/// (and of 1) as the true utilisation for the argument that no failing band is missed to hold.
+pub(super) fn decision_levels(spread: f64) -> [f64; 3] {
+    [
+        wide_threshold(&WIDE_STEPS[0], spread),
+        wide_threshold(&WIDE_STEPS[1], spread),
+        PEAK_GUARD,
+    ]
 }
 
 /// The narrow-band guard (module docs, step 3) at a sampled local maximum `mid` between the

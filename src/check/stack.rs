@@ -255,7 +255,7 @@ impl StackChecker {
                 s,
                 bond,
                 limit(bond, c.safety_factor),
-                c.epsilon,
+                (c.epsilon, self.design.friction),
                 extras,
                 how,
             ),
