@@ -79,8 +79,10 @@ pub use tangential::InterfaceShear;
 use super::Elastic;
 use crate::error::Error;
 use serde::Serialize;
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
+use std::mem::take;
 
 /// Relative error bound of [`Stack::response`]'s S, f_k and g_k where their magnitude is at
 /// least 1e−30, as asserted by the test against the high-precision reference (measured worst:
@@ -598,20 +600,65 @@ pub struct StackCache {
     interfaces: Vec<(f64, f64)>,
 }
 
+/// The per-node storage of a [`StackCache`], emptied, kept for the next cache on the thread.
+#[derive(Default)]
+struct Spare {
+    index: NodeMap,
+    keys: Vec<u64>,
+    nodes: Vec<Node>,
+    base_steps: Vec<Step>,
+    upper_steps: Vec<Step>,
+    interfaces: Vec<(f64, f64)>,
+}
+
+thread_local! {
+    /// The storage of the last cache dropped on this thread. A check builds a new engine, and
+    /// with it a new cache of some MB: taken fresh from the allocator every time, these pages
+    /// were returned to the system and faulted in again at every check.
+    static SPARE: RefCell<Option<Spare>> = const { RefCell::new(None) };
+}
+
+impl Drop for StackCache {
+    fn drop(&mut self) {
+        let mut spare = Spare {
+            index: take(&mut self.index),
+            keys: take(&mut self.keys),
+            nodes: take(&mut self.nodes),
+            base_steps: take(&mut self.base_steps),
+            upper_steps: take(&mut self.upper_steps),
+            interfaces: take(&mut self.interfaces),
+        };
+        spare.index.clear();
+        spare.keys.clear();
+        spare.nodes.clear();
+        spare.base_steps.clear();
+        spare.upper_steps.clear();
+        spare.interfaces.clear();
+        // After the thread's storage is gone (at its exit) the spare is simply freed.
+        let _ = SPARE.try_with(|s| *s.borrow_mut() = Some(spare));
+    }
+}
+
 impl StackCache {
-    /// A cache serving `stack`, with the base below its top layer.
+    /// A cache serving `stack`, with the base below its top layer (on the storage of the last
+    /// cache dropped on this thread, if any).
     pub fn new(stack: Stack) -> Self {
+        let spare = SPARE
+            .try_with(|s| s.borrow_mut().take())
+            .ok()
+            .flatten()
+            .unwrap_or_default();
         Self {
             stack,
             varied: 0,
             generation: 1,
-            index: NodeMap::default(),
-            keys: Vec::new(),
+            index: spare.index,
+            keys: spare.keys,
             cursor: 0,
-            nodes: Vec::new(),
-            base_steps: Vec::new(),
-            upper_steps: Vec::new(),
-            interfaces: Vec::new(),
+            nodes: spare.nodes,
+            base_steps: spare.base_steps,
+            upper_steps: spare.upper_steps,
+            interfaces: spare.interfaces,
         }
     }
 
