@@ -247,7 +247,8 @@ impl<'a> Kernels<'a> {
     pub(super) fn k_many(&self, q: &[f64], u: &[f64], out: &mut [f64]) {
         match self.source {
             Source::Table { table, d, ln_d } => table.k_many(Nodes { q, u, d, ln_d }, out),
-            Source::Exact { .. } | Source::Stack { .. } => {
+            Source::Stack { memo, .. } => memo.borrow_mut().k_many(q, out),
+            Source::Exact { .. } => {
                 for ((o, &q), &u) in out.iter_mut().zip(q).zip(u) {
                     *o = self.k(q, u);
                 }
@@ -283,6 +284,9 @@ impl<'a> Kernels<'a> {
                         }
                     }
                 }
+            }
+            Source::Stack { k, memo } if self.mix == Mix::Static => {
+                memo.borrow_mut().interface_many(k, q, f2, g2);
             }
             _ => {
                 for (((fo, go), &q), &u) in f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u) {

@@ -79,8 +79,10 @@ pub use tangential::InterfaceShear;
 use super::Elastic;
 use crate::error::Error;
 use serde::Serialize;
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
+use std::mem::take;
 
 /// Relative error bound of [`Stack::response`]'s S, f_k and g_k where their magnitude is at
 /// least 1e−30, as asserted by the test against the high-precision reference (measured worst:
@@ -262,6 +264,8 @@ pub struct Layer {
 struct Consts {
     /// 2G (Pa): converts between the stiffness in Pa and in the layer's units.
     two_g: f64,
+    /// 1/(2G), formed once (the recursions scale by it at every node).
+    inv_two_g: f64,
     kappa: f64,
     /// A, A², A³ of the first-order system.
     powers: [M4; 3],
@@ -287,8 +291,10 @@ impl Consts {
         let a3 = mul4(&a2, &a1);
         let kappa = 3.0 - 4.0 * nu;
         let (p, o) = (2.0 * (1.0 - nu) / kappa, (1.0 - 2.0 * nu) / kappa);
+        let two_g = 2.0 * m.shear_modulus();
         Self {
-            two_g: 2.0 * m.shear_modulus(),
+            two_g,
+            inv_two_g: 1.0 / two_g,
             kappa,
             powers: [a1, a2, a3],
             kd: [[-p, -o], [-o, -p]],
@@ -438,14 +444,13 @@ impl Stack {
         let range = from..from + steps.len();
         let layers = self.layers[range.clone()].iter().zip(&self.consts[range]);
         for (step, (layer, c)) in steps.iter_mut().zip(layers).rev() {
-            let kb = scale(&k_pa, 1.0 / c.two_g);
+            let kb = scale(&k_pa, c.inv_two_g);
             let x = q * layer.thickness;
-            let (kt, s) = if x <= X_THIN {
-                thin_up(c, x, kb)
+            let kt = if x <= X_THIN {
+                thin_up(c, x, kb, step)
             } else {
-                thick_up(c, x, &Face::new(c, kb))
+                thick_up(c, x, &Face::new(c, kb), step)
             };
-            *step = s;
             k_pa = scale(&kt, c.two_g);
         }
         k_pa
@@ -457,50 +462,67 @@ impl Stack {
         let (last, above) = steps.split_last_mut().expect("a layer above the base");
         let c = &self.consts[above.len()];
         let x = q * self.layers[above.len()].thickness;
-        let (kt, s) = if x <= X_THIN {
-            thin_up(c, x, face.kb)
+        let kt = if x <= X_THIN {
+            thin_up(c, x, face.kb, last)
         } else {
-            thick_up(c, x, face)
+            thick_up(c, x, face, last)
         };
-        *last = s;
         self.up(q, 0, scale(&kt, c.two_g), above)
     }
 
     /// The downward pass from the top, whose stiffness is `k_pa` (Pa), through the steps of
     /// every layer (`upper`, not empty, then `lower`; top first): S, and (f_k, g_k) into `out`.
     fn down(&self, k_pa: M2, upper: &[Step], lower: &[Step], out: &mut [(f64, f64)]) -> f64 {
-        let mut t = [[0.0; 2]; MAX_LAYERS];
-        let u0 = self.pass(k_pa, upper, lower, [0.0, 1.0], &mut t[..out.len()]);
-        for (o, t) in out.iter_mut().zip(&t) {
-            *o = (t[1], t[0]);
-        }
+        let u0 = self.top_displacement(k_pa, &upper[0], [0.0, 1.0]);
+        self.interfaces_from(u0, upper, lower, out);
+        self.s_of(u0)
+    }
+
+    /// S from the top displacement ũ(0) (in the top layer's units) under t(0) = (0, 1).
+    fn s_of(&self, u0: V2) -> f64 {
         -u0[1] / (2.0 * (1.0 - self.layers[0].material.poisson))
     }
 
-    /// The downward pass of the top traction t(0) = `t0` from the top, whose stiffness is
-    /// `k_pa` (Pa), through the steps of every layer (`upper`, not empty, then `lower`; top
-    /// first): the top displacement ũ(0) (in the top layer's units), and the traction (T, Σ) at
-    /// every interface into `out`.
-    fn pass(&self, k_pa: M2, upper: &[Step], lower: &[Step], t0: V2, out: &mut [V2]) -> V2 {
-        let top = &self.consts[0];
-        // The top compliance: Y X⁻¹ for a thin top layer (no inversion of the stiffness, which
-        // cancels for a thin incompressible layer on a far stiffer base), K̃_1⁻¹ otherwise.
-        let u0 = match &upper[0] {
+    /// The top displacement ũ(0) (in the top layer's units) under the top traction t(0) = `t0`,
+    /// from the stiffness `k_pa` (Pa) at the top and the top layer's step.
+    fn top_displacement(&self, k_pa: M2, top_step: &Step, t0: V2) -> V2 {
+        // Y X⁻¹ for a thin top layer (no inversion of the stiffness, which cancels for a thin
+        // incompressible layer on a far stiffer base), K̃_1⁻¹ otherwise.
+        match top_step {
             Step::Thin { x_inv, y, .. } => mulv(y, mulv(x_inv, t0)),
-            Step::Thick { .. } => mulv(&inv(&scale(&k_pa, 1.0 / top.two_g)), t0),
-        };
+            Step::Thick { .. } => mulv(&inv(&scale(&k_pa, self.consts[0].inv_two_g)), t0),
+        }
+    }
+
+    /// (f_k, g_k) into `out` from the top displacement `u0` under t(0) = (0, 1), through the
+    /// steps of every layer (`upper`, not empty, then `lower`; top first).
+    fn interfaces_from(&self, u0: V2, upper: &[Step], lower: &[Step], out: &mut [(f64, f64)]) {
+        let mut t = [[0.0; 2]; MAX_LAYERS];
+        self.pass(
+            u0,
+            upper.iter().chain(lower),
+            [0.0, 1.0],
+            &mut t[..out.len()],
+        );
+        for (o, t) in out.iter_mut().zip(&t) {
+            *o = (t[1], t[0]);
+        }
+    }
+
+    /// The downward pass of the top traction t(0) = `t0` with the top displacement `u0` (in the
+    /// top layer's units) through the steps of every layer (top first): the traction (T, Σ) at
+    /// every interface into `out`.
+    fn pass<'a>(&self, u0: V2, steps: impl Iterator<Item = &'a Step>, t0: V2, out: &mut [V2]) {
         let mut t = t0;
         // Displacement times q (dimensionless): layer k's ũ is 2G_k times this.
-        let mut uq = scale_v(u0, 1.0 / top.two_g);
-        let steps = upper.iter().chain(lower);
+        let mut uq = scale_v(u0, self.consts[0].inv_two_g);
         for ((step, c), o) in steps.zip(&self.consts).zip(out.iter_mut()) {
             let ut = scale_v(uq, c.two_g);
             let (ub, tb) = down(step, ut, t);
             *o = tb;
             t = tb;
-            uq = scale_v(ub, 1.0 / c.two_g);
+            uq = scale_v(ub, c.inv_two_g);
         }
-        u0
     }
 }
 
@@ -530,23 +552,28 @@ impl Hasher for NodeHasher {
 pub type NodeMap = HashMap<u64, u32, BuildHasherDefault<NodeHasher>>;
 
 /// One wavenumber of a [`StackCache`]: the varied layer's face to the base below it, and S of
-/// the current stack (with its interface kernels, kept beside), valid if computed in
-/// the current generation.
+/// the current stack with the top displacement it came from, valid if computed in the current
+/// `generation` (the interface kernels, kept beside, if computed in `fg_generation`).
 #[derive(Debug, Clone, Copy)]
 struct Node {
     /// The varied layer's face to the base.
     face: Face,
     generation: u64,
+    fg_generation: u64,
     s: f64,
+    /// ũ(0) under t(0) = (0, 1), in the top layer's units: where the downward pass starts.
+    u0: V2,
 }
 
 /// The kernels of a stack whose layers change thickness (or material) above a fixed base, per
 /// wavenumber: the base (the layers below the `varied` one and the substrate) is the same for
 /// every stack served, so its part of the upward recursion (its steps and the stiffness on top
 /// of it) is computed once per wavenumber and kept; each stack's own part (the layers from the
-/// top down to the varied one, and the downward pass) is computed once per wavenumber and kept
-/// until the next stack. The same operations as [`Stack::response_into`] in the same order:
-/// the values are the same to the last bit.
+/// top down to the varied one) is computed once per wavenumber and kept until the next stack,
+/// and so is its downward pass (the interface kernels), made only at the wavenumbers whose
+/// interface kernels are asked for (the contact integrals ask for S alone above the interface
+/// tails' cut). The same operations as [`Stack::response_into`] in the same order: the values
+/// are the same to the last bit.
 ///
 /// The base follows the stacks served ([`StackCache::serve`]): a stack that differs from the
 /// last one below the varied layer, or in the number of layers or the substrate, starts a new
@@ -566,26 +593,72 @@ pub struct StackCache {
     /// Per node, the steps of the base's layers (top first), `stack.layers.len() − varied − 1`
     /// of them.
     base_steps: Vec<Step>,
+    /// Per node, the steps of the current stack's layers above the base (top first),
+    /// `varied + 1` of them.
+    upper_steps: Vec<Step>,
     /// Per node, (f_k, g_k) of the current stack, `stack.layers.len()` of them.
     interfaces: Vec<(f64, f64)>,
-    /// The steps of the layers above the base at the node being evaluated.
-    scratch: Vec<Step>,
+}
+
+/// The per-node storage of a [`StackCache`], emptied, kept for the next cache on the thread.
+#[derive(Default)]
+struct Spare {
+    index: NodeMap,
+    keys: Vec<u64>,
+    nodes: Vec<Node>,
+    base_steps: Vec<Step>,
+    upper_steps: Vec<Step>,
+    interfaces: Vec<(f64, f64)>,
+}
+
+thread_local! {
+    /// The storage of the last cache dropped on this thread. A check builds a new engine, and
+    /// with it a new cache of some MB: taken fresh from the allocator every time, these pages
+    /// were returned to the system and faulted in again at every check.
+    static SPARE: RefCell<Option<Spare>> = const { RefCell::new(None) };
+}
+
+impl Drop for StackCache {
+    fn drop(&mut self) {
+        let mut spare = Spare {
+            index: take(&mut self.index),
+            keys: take(&mut self.keys),
+            nodes: take(&mut self.nodes),
+            base_steps: take(&mut self.base_steps),
+            upper_steps: take(&mut self.upper_steps),
+            interfaces: take(&mut self.interfaces),
+        };
+        spare.index.clear();
+        spare.keys.clear();
+        spare.nodes.clear();
+        spare.base_steps.clear();
+        spare.upper_steps.clear();
+        spare.interfaces.clear();
+        // After the thread's storage is gone (at its exit) the spare is simply freed.
+        let _ = SPARE.try_with(|s| *s.borrow_mut() = Some(spare));
+    }
 }
 
 impl StackCache {
-    /// A cache serving `stack`, with the base below its top layer.
+    /// A cache serving `stack`, with the base below its top layer (on the storage of the last
+    /// cache dropped on this thread, if any).
     pub fn new(stack: Stack) -> Self {
+        let spare = SPARE
+            .try_with(|s| s.borrow_mut().take())
+            .ok()
+            .flatten()
+            .unwrap_or_default();
         Self {
             stack,
             varied: 0,
             generation: 1,
-            index: NodeMap::default(),
-            keys: Vec::new(),
+            index: spare.index,
+            keys: spare.keys,
             cursor: 0,
-            nodes: Vec::new(),
-            base_steps: Vec::new(),
-            interfaces: Vec::new(),
-            scratch: vec![EMPTY_STEP; MAX_LAYERS],
+            nodes: spare.nodes,
+            base_steps: spare.base_steps,
+            upper_steps: spare.upper_steps,
+            interfaces: spare.interfaces,
         }
     }
 
@@ -633,6 +706,7 @@ impl StackCache {
                 self.keys.clear();
                 self.nodes.clear();
                 self.base_steps.clear();
+                self.upper_steps.clear();
                 self.interfaces.clear();
             }
         }
@@ -642,47 +716,117 @@ impl StackCache {
 
     /// S of the stack served at wavenumber q ≥ 0 (1/m): the value of [`Stack::response_into`].
     pub fn s(&mut self, q: f64) -> f64 {
-        self.response(q).0
+        let i = self.node(q);
+        self.nodes[i].s
+    }
+
+    /// S⁻² of the stack served at the wavenumbers `q` (the values of [`StackCache::s`]), into
+    /// `out`.
+    pub fn k_many(&mut self, q: &[f64], out: &mut [f64]) {
+        for (o, &q) in out.iter_mut().zip(q) {
+            let i = self.node(q);
+            *o = self.nodes[i].s.powi(-2);
+        }
+    }
+
+    /// f_k², g_k² at the interface `k` of the stack served at the wavenumbers `q` (the values of
+    /// [`StackCache::response`]), into `f2` and `g2`.
+    pub fn interface_many(&mut self, k: usize, q: &[f64], f2: &mut [f64], g2: &mut [f64]) {
+        let n = self.stack.layers.len();
+        for ((fo, go), &q) in f2.iter_mut().zip(g2.iter_mut()).zip(q) {
+            let i = self.node(q);
+            if self.nodes[i].fg_generation != self.generation {
+                self.compute_interfaces(i);
+            }
+            let (f, g) = self.interfaces[i * n + k];
+            (*fo, *go) = (f * f, g * g);
+        }
     }
 
     /// S and every (f_k, g_k) of the stack served at wavenumber q ≥ 0 (1/m): the values of
     /// [`Stack::response_into`].
     pub fn response(&mut self, q: f64) -> (f64, &[(f64, f64)]) {
+        let i = self.node(q);
+        if self.nodes[i].fg_generation != self.generation {
+            self.compute_interfaces(i);
+        }
         let n = self.stack.layers.len();
-        let below = n - self.varied - 1;
-        let next = self.nodes.len();
+        (self.nodes[i].s, &self.interfaces[i * n..(i + 1) * n])
+    }
+
+    /// The index of the node at q, kept if new, with S of the stack served computed if not yet
+    /// in this generation. The nodes come mostly in the order kept and computed: the rest is
+    /// out of line.
+    #[inline]
+    fn node(&mut self, q: f64) -> usize {
         let bits = q.to_bits();
         let i = match self.keys.get(self.cursor + 1) {
             Some(&k) if k == bits => self.cursor + 1,
-            _ => *self.index.entry(bits).or_insert(next as u32) as usize,
+            _ => self.find_or_add(q),
         };
         self.cursor = i;
+        if self.nodes[i].generation != self.generation {
+            self.compute_s(i, q);
+        }
+        i
+    }
+
+    /// The index of the node at q, kept (with the base's steps) if new.
+    #[inline(never)]
+    fn find_or_add(&mut self, q: f64) -> usize {
+        let next = self.nodes.len();
+        let bits = q.to_bits();
+        let i = *self.index.entry(bits).or_insert(next as u32) as usize;
         if i == next {
+            let n = self.stack.layers.len();
+            let (above, below) = (self.varied + 1, n - self.varied - 1);
             self.keys.push(bits);
             let sub = self.stack.substrate_stiffness();
-            let steps = &mut self.scratch[..below];
+            let start = self.base_steps.len();
+            self.base_steps.resize(start + below, EMPTY_STEP);
+            let steps = &mut self.base_steps[start..];
             let base_k = self.stack.up(q, self.varied + 1, sub, steps);
             let c = &self.stack.consts[self.varied];
-            let face = Face::new(c, scale(&base_k, 1.0 / c.two_g));
-            self.base_steps.extend_from_slice(steps);
+            let face = Face::new(c, scale(&base_k, c.inv_two_g));
+            self.upper_steps
+                .resize(self.upper_steps.len() + above, EMPTY_STEP);
             self.interfaces
-                .extend_from_slice(&[(0.0, 0.0); MAX_LAYERS][..n]);
+                .resize(self.interfaces.len() + n, (0.0, 0.0));
             self.nodes.push(Node {
                 face,
                 generation: 0,
+                fg_generation: 0,
                 s: 0.0,
+                u0: [0.0; 2],
             });
         }
+        i
+    }
+
+    /// S of the stack served at node `i` (wavenumber q), with its steps above the base.
+    #[inline(never)]
+    fn compute_s(&mut self, i: usize, q: f64) {
+        let above = self.varied + 1;
         let node = &mut self.nodes[i];
+        let upper = &mut self.upper_steps[i * above..(i + 1) * above];
+        let k_pa = self.stack.up_from_face(q, &node.face, upper);
+        node.u0 = self.stack.top_displacement(k_pa, &upper[0], [0.0, 1.0]);
+        node.s = self.stack.s_of(node.u0);
+        node.generation = self.generation;
+    }
+
+    /// Every (f_k, g_k) of the stack served at node `i`, whose S is computed: the downward pass.
+    #[inline(never)]
+    fn compute_interfaces(&mut self, i: usize) {
+        let n = self.stack.layers.len();
+        let (above, below) = (self.varied + 1, n - self.varied - 1);
+        let node = &mut self.nodes[i];
+        let upper = &self.upper_steps[i * above..(i + 1) * above];
+        let lower = &self.base_steps[i * below..(i + 1) * below];
         let interfaces = &mut self.interfaces[i * n..(i + 1) * n];
-        if node.generation != self.generation {
-            let upper = &mut self.scratch[..=self.varied];
-            let k_pa = self.stack.up_from_face(q, &node.face, upper);
-            let lower = &self.base_steps[i * below..(i + 1) * below];
-            node.s = self.stack.down(k_pa, upper, lower, interfaces);
-            node.generation = self.generation;
-        }
-        (node.s, interfaces)
+        self.stack
+            .interfaces_from(node.u0, upper, lower, interfaces);
+        node.fg_generation = self.generation;
     }
 }
 
@@ -697,20 +841,21 @@ fn scale_v(v: V2, s: f64) -> V2 {
     [v[0] * s, v[1] * s]
 }
 
-/// The thin-layer step: K̃_t from K̃_b with the propagator Q = exp(−xA).
-fn thin_up(c: &Consts, x: f64, kb: M2) -> (M2, Step) {
+/// The thin-layer step: K̃_t from K̃_b with the propagator Q = exp(−xA), the step into `step`
+/// (written in place: a step is some hundred bytes).
+fn thin_up(c: &Consts, x: f64, kb: M2, step: &mut Step) -> M2 {
     let (p, q) = c.propagators_minus_i(x);
     let [quu, qut, qtu, qtt] = blocks(&q);
     let x_m = add(&add(&qtu, &kb), &mul(&qtt, &kb));
     let y_m = add(&add(&I2, &quu), &mul(&qut, &kb));
     let kt = mul_sym(&x_m, &inv(&y_m));
-    let step = Step::Thin {
+    *step = Step::Thin {
         kb,
         x_inv: inv(&x_m),
         y: y_m,
         p,
     };
-    (kt, step)
+    kt
 }
 
 /// What a layer's step needs of the stiffness below it, in the layer's units: K̃_b, and for the
@@ -733,8 +878,8 @@ impl Face {
     }
 }
 
-/// The thick-layer step: K̃_t from K̃_b with decaying exponentials only.
-fn thick_up(c: &Consts, x: f64, face: &Face) -> (M2, Step) {
+/// The thick-layer step: K̃_t from K̃_b with decaying exponentials only, the step into `step`.
+fn thick_up(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
     let Face {
         kb,
         ku_kb_inv,
@@ -748,12 +893,12 @@ fn thick_up(c: &Consts, x: f64, face: &Face) -> (M2, Step) {
     let er = mul(&eu, &r);
     let i_er = add(&I2, &er);
     let kt = add(&c.kd, &mul_sym(&scale(&er, c.ku_minus_kd()), &inv(&i_er)));
-    let step = Step::Thick {
+    *step = Step::Thick {
         kb,
         v_of_t: inv(&mul(&kt, &i_er)),
         b: scale(&mul(&ku_kb_inv, &ed), c.ku_minus_kd()),
     };
-    (kt, step)
+    kt
 }
 
 /// The state (ũ_b, t_b) at a layer's bottom from (ũ_t, t_t) at its top.

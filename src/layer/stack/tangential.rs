@@ -163,17 +163,17 @@ impl Stack {
         let t = Tracked { v: t0, e: [0.0; 2] };
         let u0 = match &steps[0] {
             Step::Thin { x_inv, y, .. } => apply(y, apply(x_inv, t)),
-            Step::Thick { .. } => apply(&inv(&scale(&k_pa, 1.0 / top.two_g)), t),
+            Step::Thick { .. } => apply(&inv(&scale(&k_pa, top.inv_two_g)), t),
         };
         let mut t = t;
         // Displacement times q (dimensionless): layer k's ũ is 2G_k times this.
-        let mut uq = scaled(u0, 1.0 / top.two_g);
+        let mut uq = scaled(u0, top.inv_two_g);
         for ((step, c), o) in steps.iter().zip(&self.consts).zip(out.iter_mut()) {
             let ut = scaled(uq, c.two_g);
             let (ub, tb) = tracked_down(step, ut, t);
             *o = tb.v;
             t = tb;
-            uq = scaled(ub, 1.0 / c.two_g);
+            uq = scaled(ub, c.inv_two_g);
         }
     }
 }
