@@ -249,6 +249,18 @@ pub fn search_min_thickness_spread(
             Ok(s.u.ln())
         },
     )?;
+    Ok(result(
+        Some(crossing_estimate(&b, u_rel_err)),
+        governing,
+        false,
+        evaluations,
+    ))
+}
+
+/// d_min from a final bracket `b` in ln d of the pass/fail crossing (module docs, step 4): the
+/// geometric midpoint, with the distance to the bracket's upper end plus the shift of the
+/// crossing by the utilisation's relative error `u_rel_err` as its error.
+pub(crate) fn crossing_estimate(b: &Bracket, u_rel_err: f64) -> Estimate {
     let (x_fail, y_fail, x_pass, y_pass) = (b.x_fail, b.y_fail, b.x_pass, b.y_pass);
     let mid = (0.5 * (x_fail + x_pass)).exp();
     // The geometric midpoint is nearer the bracket's lower end: its distance to the upper one
@@ -259,8 +271,7 @@ pub fn search_min_thickness_spread(
     // final bracket.
     let slope = (y_fail - y_pass) / (x_pass - x_fail);
     let shift = mid * (-(-u_rel_err.min(0.5)).ln_1p() / slope.abs()).exp_m1();
-    let d_min = Estimate::new(mid, bracket + shift, Termination::Converged);
-    Ok(result(Some(d_min), governing, false, evaluations))
+    Estimate::new(mid, bracket + shift, Termination::Converged)
 }
 
 /// One sample of the minimum-thickness search: x = ln d, the utilisation and its check.

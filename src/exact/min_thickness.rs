@@ -3,30 +3,34 @@
 //! maxima, ITP refinement of the pass/fail crossing; safe for a utilisation that is not
 //! monotone in d) with one boundary-element solve per thickness, each warm-started from the
 //! solved pressure of the nearest thickness (in ln d) solved before ([`crate::bem::solve_from`]).
+//! The search runs from coarse to fine ([`super::levels`]): in full on the map at a quarter of
+//! the resolution (every fourth pixel; on a map under 512 pixels a side, whose quarter would
+//! have fewer than [`super::levels::MIN_COARSE_SIDE`], at half the resolution), then on the
+//! finer copies only near the coarser crossing, inheriting the coarser scan where the levels
+//! agree (else in full there too).
 //!
 //! The utilisation at d is the largest value/limit of the enabled exact stress checks
 //! ([`crate::verify`]: the ε-levels of the solved fields and the mean contact pressure). The
 //! error of d_min has two parts:
-//! - the bracket: the search stops when its bracket is [`crate::check::D_MIN_RTOL`] wide; d_min
-//!   is the geometric midpoint, the distance to the bracket's upper end (plus the shift by the
-//!   solver tolerance's share of A/A0) its error ([`crate::check::search_min_thickness`]);
-//! - the grid: the same search on the map at half the resolution (every second pixel, as
-//!   [`crate::verify`] estimates the error of every exact number); the difference of the two
-//!   d_min. NaN for maps with fewer than 32 pixels a side (no half-resolution map); infinite
-//!   when one resolution finds a passing thickness and the other none.
+//! - the bracket: the search stops when its bracket is [`crate::check::D_MIN_RTOL`] wide, or
+//!   (on a finer level) when its half-width is at most a quarter of its distance to the coarser
+//!   d_min, a lower bound of the grid part; d_min is the geometric midpoint, the distance to the
+//!   bracket's upper end (plus the shift by the solver tolerance's share of A/A0) its error
+//!   ([`crate::check::search_min_thickness`]);
+//! - the grid: the difference to the d_min of the map at half the resolution (every second
+//!   pixel, as [`crate::verify`] estimates the error of every exact number). NaN for maps with
+//!   fewer than 32 pixels a side (no half-resolution map); infinite when one resolution finds a
+//!   passing thickness and the other none.
 //!
 //! The reported error is their sum.
 
+use super::levels::{MIN_COARSE_SIDE, Solver, search_levels};
 use crate::bem::{BemSettings, Surface};
-use crate::check::checker::scan_range;
-use crate::check::{CheckKind, Design, MinThickness, Utilisation, search_min_thickness};
+use crate::check::{CheckKind, Design, MinThickness, Utilisation};
 use crate::error::Error;
 use crate::layer::Stack;
 use crate::prec::Estimate;
 use crate::verify::{ExactCheck, Level, exact_checks, half, solve_one};
-
-/// Solved pressure fields kept for warm starts (the newest; a search moves locally in ln d).
-const WARM_KEEP: usize = 4;
 
 /// The exact minimum thickness on one surface.
 #[derive(Debug, Clone, PartialEq)]
@@ -115,54 +119,10 @@ pub fn exact_utilisation(
     Ok((u, s.pressure, s.convergence.iterations))
 }
 
-/// The largest wavenumber on the grid, |(π/dx, π/dy)| (1/m).
-fn q_grid_max(surface: &Surface) -> f64 {
-    (std::f64::consts::PI / surface.dx).hypot(std::f64::consts::PI / surface.dy)
-}
-
-/// The minimum-thickness search on one surface, each solve warm-started from the nearest
-/// thickness solved before; returns the search, its solves and their iterations.
-pub fn search(
-    surface: &Surface,
-    design: &Design,
-    settings: &BemSettings,
-) -> Result<(MinThickness, usize, usize), Error> {
-    search_with(surface, &mut |s, d, start| {
-        exact_utilisation(s, design, settings, d, start)
-    })
-}
-
 /// The exact utilisation at one thickness on a surface, warm-started from a pressure field:
 /// the utilisation, the solved pressure and the solver's iterations.
 pub(crate) type Solve<'a> =
     dyn FnMut(&Surface, f64, Option<&[f64]>) -> Result<(Utilisation, Vec<f64>, usize), Error> + 'a;
-
-/// The search of [`search`] with the exact utilisation at (surface, thickness, warm start)
-/// given by `solve` (a film's, or a stack's with one layer varied).
-pub(crate) fn search_with(
-    surface: &Surface,
-    solve: &mut Solve<'_>,
-) -> Result<(MinThickness, usize, usize), Error> {
-    let (lo, hi) = scan_range(surface.q_low(), q_grid_max(surface));
-    let mut warm: Vec<(f64, Vec<f64>)> = Vec::new();
-    let (mut solves, mut iterations) = (0, 0);
-    let m = search_min_thickness(lo, hi, |d| {
-        let x = d.ln();
-        let start = warm
-            .iter()
-            .min_by(|a, b| (a.0 - x).abs().total_cmp(&(b.0 - x).abs()))
-            .map(|(_, p)| p.as_slice());
-        let (u, pressure, its) = solve(surface, d, start)?;
-        solves += 1;
-        iterations += its;
-        if warm.len() == WARM_KEEP {
-            warm.remove(0);
-        }
-        warm.push((x, pressure));
-        Ok(u)
-    })?;
-    Ok((m, solves, iterations))
-}
 
 /// The exact minimum thickness on `surface` with its bracket and grid errors (module docs).
 pub fn min_thickness(
@@ -175,30 +135,38 @@ pub fn min_thickness(
     })
 }
 
-/// [`min_thickness`] with the exact utilisation given by `solve` ([`search_with`]): the search
-/// on the map and on the map at half the resolution.
+/// [`min_thickness`] with the exact utilisation at (surface, thickness, warm start) given by
+/// `solve` (a film's, or a stack's with one layer varied): the searches from coarse to fine
+/// ([`super::levels`]) on the map at a quarter and at half the resolution and on the map.
 pub(crate) fn min_thickness_with(
     surface: &Surface,
     solve: &mut Solve<'_>,
 ) -> Result<ExactMinThickness, Error> {
-    let (fine, mut solves, mut iterations) = search_with(surface, solve)?;
-    let grid_err = match half(surface) {
+    let halved = half(surface).transpose()?;
+    let quarter = halved
+        .as_ref()
+        .filter(|h| h.nx.min(h.ny) >= 2 * MIN_COARSE_SIDE)
+        .and_then(half)
+        .transpose()?;
+    let levels: Vec<&Surface> = [quarter.as_ref(), halved.as_ref(), Some(surface)]
+        .into_iter()
+        .flatten()
+        .collect();
+    let mut solver = Solver::new(solve);
+    let mut searches = search_levels(&levels, &mut solver)?;
+    let fine = searches.pop().expect("the map itself is a level");
+    let grid_err = match searches.pop() {
         None => f64::NAN,
-        Some(coarse) => {
-            let (c, s, i) = search_with(&coarse?, solve)?;
-            solves += s;
-            iterations += i;
-            match (fine.thickness, c.thickness) {
-                (Some(a), Some(b)) => (a.value - b.value).abs(),
-                (None, None) => 0.0,
-                _ => f64::INFINITY,
-            }
-        }
+        Some(c) => match (fine.thickness, c.thickness) {
+            (Some(a), Some(b)) => (a.value - b.value).abs(),
+            (None, None) => 0.0,
+            _ => f64::INFINITY,
+        },
     };
     Ok(ExactMinThickness {
         search: fine,
         grid_err,
-        solves,
-        iterations,
+        solves: solver.solves,
+        iterations: solver.iterations,
     })
 }

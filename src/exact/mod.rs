@@ -8,6 +8,7 @@
 //! The exact verdict: every enabled exact stress check passes at the design thickness and the
 //! thickness is at least the exact d_min (when min-thickness is enabled).
 
+pub mod levels;
 pub mod min_thickness;
 pub mod realisations;
 pub mod stack;

@@ -1,9 +1,9 @@
 //! The minimum thickness of one layer of a stack (`criteria.thickness_of`, the others fixed) by
 //! the exact solver: the search of [`super::min_thickness`] (the scan, the narrow-band guard and
 //! the ITP refinement of [`crate::check::min_thickness`], each solve warm-started from the
-//! nearest thickness solved before; the error the bracket's plus the difference to the same
-//! search on the map at half the resolution), with one boundary-element solve of the stack
-//! ([`crate::verify_stack`]) per thickness.
+//! nearest thickness solved before, from coarse to fine as [`super::levels`] says; the error
+//! the bracket's plus the difference to the d_min of the map at half the resolution), with one
+//! boundary-element solve of the stack ([`crate::verify_stack`]) per thickness.
 //!
 //! The utilisation at d is the largest value/limit of the enabled exact stress checks of the
 //! stack: bond-shear at every interface against its own bond, substrate-yield at the bottom (the
