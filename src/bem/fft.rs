@@ -2,16 +2,18 @@
 //!
 //! The solver only ever needs "transform, multiply each Fourier coefficient, transform back"
 //! (a periodic convolution), so that is the primitive, fused into three passes over memory:
-//! 1. a real FFT of every row (`realfft`: `nxc = nx/2 + 1` coefficients per row);
-//! 2. for each strip of `STRIP` adjacent kx columns: gather the strip (a small transpose that
-//!    stays in cache), complex FFTs of length `ny` along y, the caller's multiplier on every
-//!    column (kx fixed, all ky in wrap-around order), inverse FFTs, and a write-out in
-//!    strip-major order;
+//! 1. a real FFT of every row (`realfft`: `nxc = nx/2 + 1` coefficients per row), written into
+//!    strips of `width` adjacent kx columns (strip-major, rows of a strip contiguous);
+//! 2. for each strip: a transpose into a buffer that stays in cache, and for each of its
+//!    columns a complex FFT of length `ny` along y, the caller's multiplier (kx fixed, all ky in
+//!    wrap-around order) and the inverse FFT; the strip is written back in place;
 //! 3. a gather of every row from the strips and an inverse real FFT.
 //!
-//! There is no full transpose and no full spectrum array: two half-spectrum buffers (rows and
-//! strips) and the real fields, so memory is O(nx·ny). Rows and strips are processed in
-//! parallel with rayon. Transforms are unnormalised: the multiplier carries the 1/(nx·ny).
+//! There is no full transpose: every pass over the half-spectrum reads or writes runs of
+//! `width` values, and consecutive rows of a strip are adjacent, so the large-grid passes walk
+//! memory in order within each strip. One half-spectrum buffer and the real fields: memory is
+//! O(nx·ny). Rows and strips are processed in parallel with rayon. Transforms are
+//! unnormalised: the multiplier carries the 1/(nx·ny).
 
 use rayon::prelude::*;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
@@ -19,9 +21,14 @@ use rustfft::num_complex::Complex64;
 use rustfft::{Fft, FftPlanner};
 use std::sync::Arc;
 
-/// Columns per strip: 8 complex values (128 bytes) per row read, strip buffer of
-/// 8·ny complex values (128 KiB at ny = 1024, inside L2).
-const STRIP: usize = 8;
+/// Target size of a strip (bytes): its transpose buffer stays in a core's L2 cache.
+const STRIP_BYTES: usize = 1 << 18;
+
+/// Pad between the columns of a strip's transpose buffer (complex values: one cache line).
+const COLUMN_PAD: usize = 4;
+
+/// Columns summed together first by [`Fft2::spectrum_sum`].
+const SUM_GROUP: usize = 8;
 
 /// Rows of at most this many elements go to one rayon task (keeps task overhead small).
 const CHUNK_ELEMS: usize = 1 << 14;
@@ -33,19 +40,27 @@ pub(crate) struct Fft2 {
     nx: usize,
     ny: usize,
     nxc: usize,
+    /// Columns per strip.
+    width: usize,
+    /// Elements from one strip's start to the next: `width·ny` and a pad of `width`, so that
+    /// the runs a row has in the different strips do not fall into the same cache sets.
+    stride: usize,
     row_fwd: Arc<dyn RealToComplex<f64>>,
     row_inv: Arc<dyn ComplexToReal<f64>>,
     col_fwd: Arc<dyn Fft<f64>>,
     col_inv: Arc<dyn Fft<f64>>,
-    /// Row spectra, `ny × nxc` row-major.
-    rows: Vec<Complex64>,
-    /// Filtered spectra, strip-major: strip s (columns s·STRIP.., width w) holds (y, j) at
-    /// `s·STRIP·ny + y·w + j`.
-    strips: Vec<Complex64>,
+    /// Half spectrum, strip-major: strip s (columns s·width.., width w) holds (y, j) at
+    /// `s·stride + y·w + j`.
+    spec: Vec<Complex64>,
 }
 
 impl Fft2 {
     pub(crate) fn new(nx: usize, ny: usize) -> Self {
+        Self::with_width(nx, ny, (STRIP_BYTES / (16 * ny.max(1))).clamp(8, 64))
+    }
+
+    /// A plan with `width` columns per strip (≥ 1; the results do not depend on it).
+    fn with_width(nx: usize, ny: usize, width: usize) -> Self {
         let mut rp = RealFftPlanner::<f64>::new();
         let mut cp = FftPlanner::<f64>::new();
         let nxc = nx / 2 + 1;
@@ -53,12 +68,13 @@ impl Fft2 {
             nx,
             ny,
             nxc,
+            width,
+            stride: width * ny + width,
             row_fwd: rp.plan_fft_forward(nx),
             row_inv: rp.plan_fft_inverse(nx),
             col_fwd: cp.plan_fft_forward(ny),
             col_inv: cp.plan_fft_inverse(ny),
-            rows: vec![ZERO; ny * nxc],
-            strips: vec![ZERO; ny * nxc],
+            spec: vec![ZERO; nxc.div_ceil(width) * (width * ny + width)],
         }
     }
 
@@ -87,40 +103,133 @@ impl Fft2 {
     {
         debug_assert_eq!(output.len(), self.nx * self.ny);
         self.row_pass(input, scale);
-        let (ny, nxc) = (self.ny, self.nxc);
-        let rows = &self.rows;
-        let (col_fwd, col_inv) = (&self.col_fwd, &self.col_inv);
-        let scratch_len = col_fwd
-            .get_inplace_scratch_len()
-            .max(col_inv.get_inplace_scratch_len());
-        self.strips
-            .par_chunks_mut(STRIP * ny)
+        self.column_pass(multiply);
+        self.inverse_row_pass(output);
+    }
+
+    /// Σ over half-spectrum columns of `visit(kx, column)` (column over ky, wrap-around order)
+    /// of the unnormalised FFT of `input`.
+    pub(crate) fn spectrum_sum<V>(&mut self, input: &[f64], visit: V) -> f64
+    where
+        V: Fn(usize, &[Complex64]) -> f64 + Sync,
+    {
+        self.row_pass(input, 1.0);
+        let (ny, nxc, width) = (self.ny, self.nxc, self.width);
+        let col_fwd = &self.col_fwd;
+        let columns: Vec<f64> = self
+            .spec
+            .par_chunks(self.stride)
             .enumerate()
+            .flat_map_iter(|(s, strip)| {
+                let w = width.min(nxc - s * width);
+                let mut buf = vec![ZERO; w * ny];
+                transpose(&strip[..w * ny], w, ny, ny, &mut buf);
+                if ny > 1 {
+                    col_fwd.process(&mut buf);
+                }
+                buf.chunks_exact(ny)
+                    .enumerate()
+                    .map(|(j, col)| visit(s * width + j, col))
+                    .collect::<Vec<f64>>()
+            })
+            .collect();
+        // Summed in groups of SUM_GROUP columns, then over the groups, whatever the strip
+        // width: the same order of additions on every grid.
+        let groups: Vec<f64> = columns
+            .chunks(SUM_GROUP)
+            .map(|g| g.iter().sum::<f64>())
+            .collect();
+        (0..groups.len()).into_par_iter().map(|i| groups[i]).sum()
+    }
+
+    /// Real FFT of every row of `scale · input` into the strips of `self.spec`.
+    fn row_pass(&mut self, input: &[f64], scale: f64) {
+        let (nx, ny, nxc, width) = (self.nx, self.ny, self.nxc, self.width);
+        debug_assert_eq!(input.len(), nx * ny);
+        let per_task = rows_per_chunk(nx);
+        // Each task's rows occupy one contiguous run of every strip.
+        let mut tasks: Vec<Vec<&mut [Complex64]>> = (0..ny.div_ceil(per_task))
+            .map(|_| Vec::with_capacity(nxc.div_ceil(width)))
+            .collect();
+        for (s, strip) in self.spec.chunks_mut(self.stride).enumerate() {
+            let w = width.min(nxc - s * width);
+            for (task, run) in tasks
+                .iter_mut()
+                .zip(strip[..w * ny].chunks_mut(w * per_task))
+            {
+                task.push(run);
+            }
+        }
+        let row_fwd = &self.row_fwd;
+        tasks
+            .into_par_iter()
+            .zip(input.par_chunks(nx * per_task))
             .for_each_init(
-                || (vec![ZERO; STRIP * ny], vec![ZERO; scratch_len]),
-                |(buf, scratch), (s, out)| {
-                    let c0 = s * STRIP;
-                    let w = out.len() / ny;
-                    let buf = &mut buf[..w * ny];
-                    gather_strip(rows, nxc, ny, c0, w, buf);
-                    if ny > 1 {
-                        col_fwd.process_with_scratch(buf, scratch);
-                    }
-                    for (j, col) in buf.chunks_exact_mut(ny).enumerate() {
-                        multiply(c0 + j, col);
-                    }
-                    if ny > 1 {
-                        col_inv.process_with_scratch(buf, scratch);
-                    }
-                    for y in 0..ny {
-                        for (j, o) in out[y * w..(y + 1) * w].iter_mut().enumerate() {
-                            *o = buf[j * ny + y];
+                || (vec![0.0; nx], vec![ZERO; nxc], row_fwd.make_scratch_vec()),
+                |(buf, row, scratch), (mut runs, inp)| {
+                    for (k, i) in inp.chunks_exact(nx).enumerate() {
+                        for (b, v) in buf.iter_mut().zip(i) {
+                            *b = scale * v;
+                        }
+                        row_fwd
+                            .process_with_scratch(buf, row, scratch)
+                            .expect("buffer lengths are fixed when the plan is made");
+                        for (run, src) in runs.iter_mut().zip(row.chunks(width)) {
+                            let w = src.len();
+                            for (d, v) in run[k * w..(k + 1) * w].iter_mut().zip(src) {
+                                *d = *v;
+                            }
                         }
                     }
                 },
             );
-        let (nx, even) = (self.nx, self.nx.is_multiple_of(2));
-        let strips = &self.strips;
+    }
+
+    /// Per strip: the column FFTs, `multiply` and the inverse column FFTs, in place.
+    fn column_pass<M>(&mut self, multiply: M)
+    where
+        M: Fn(usize, &mut [Complex64]) + Sync,
+    {
+        let (ny, nxc, width) = (self.ny, self.nxc, self.width);
+        let (col_fwd, col_inv) = (&self.col_fwd, &self.col_inv);
+        let scratch_len = col_fwd
+            .get_inplace_scratch_len()
+            .max(col_inv.get_inplace_scratch_len());
+        // Columns of the transpose buffer are padded apart for the same reason as the strips.
+        let cs = ny + COLUMN_PAD;
+        self.spec
+            .par_chunks_mut(self.stride)
+            .enumerate()
+            .for_each_init(
+                || (vec![ZERO; width * cs], vec![ZERO; scratch_len]),
+                |(buf, scratch), (s, strip)| {
+                    let w = width.min(nxc - s * width);
+                    let strip = &mut strip[..w * ny];
+                    transpose(strip, w, ny, cs, buf);
+                    for (j, col) in buf.chunks_exact_mut(cs).take(w).enumerate() {
+                        let col = &mut col[..ny];
+                        if ny > 1 {
+                            col_fwd.process_with_scratch(col, scratch);
+                        }
+                        multiply(s * width + j, col);
+                        if ny > 1 {
+                            col_inv.process_with_scratch(col, scratch);
+                        }
+                    }
+                    for (y, dst) in strip.chunks_exact_mut(w).enumerate() {
+                        for (j, o) in dst.iter_mut().enumerate() {
+                            *o = buf[j * cs + y];
+                        }
+                    }
+                },
+            );
+    }
+
+    /// Gather every row from the strips and inverse real FFT it into `output`.
+    fn inverse_row_pass(&mut self, output: &mut [f64]) {
+        let (nx, nxc, width, stride) = (self.nx, self.nxc, self.width, self.stride);
+        let even = nx.is_multiple_of(2);
+        let spec = &self.spec;
         let row_inv = &self.row_inv;
         let per_task = rows_per_chunk(nx);
         output
@@ -131,10 +240,12 @@ impl Fft2 {
                 |(row, scratch), (ci, chunk)| {
                     for (k, orow) in chunk.chunks_exact_mut(nx).enumerate() {
                         let y = ci * per_task + k;
-                        for (s, dst) in row.chunks_mut(STRIP).enumerate() {
+                        for (s, dst) in row.chunks_mut(width).enumerate() {
                             let w = dst.len();
-                            let base = s * STRIP * ny + y * w;
-                            dst.copy_from_slice(&strips[base..base + w]);
+                            let base = s * stride + y * w;
+                            for (d, v) in dst.iter_mut().zip(&spec[base..base + w]) {
+                                *d = *v;
+                            }
                         }
                         row[0].im = 0.0;
                         if even {
@@ -147,74 +258,14 @@ impl Fft2 {
                 },
             );
     }
-
-    /// Σ over half-spectrum columns of `visit(kx, column)` (column over ky, wrap-around order)
-    /// of the unnormalised FFT of `input`.
-    pub(crate) fn spectrum_sum<V>(&mut self, input: &[f64], visit: V) -> f64
-    where
-        V: Fn(usize, &[Complex64]) -> f64 + Sync,
-    {
-        self.row_pass(input, 1.0);
-        let (ny, nxc) = (self.ny, self.nxc);
-        let rows = &self.rows;
-        let col_fwd = &self.col_fwd;
-        (0..nxc.div_ceil(STRIP))
-            .into_par_iter()
-            .map(|s| {
-                let c0 = s * STRIP;
-                let w = STRIP.min(nxc - c0);
-                let mut buf = vec![ZERO; w * ny];
-                gather_strip(rows, nxc, ny, c0, w, &mut buf);
-                if ny > 1 {
-                    col_fwd.process(&mut buf);
-                }
-                buf.chunks_exact(ny)
-                    .enumerate()
-                    .map(|(j, col)| visit(c0 + j, col))
-                    .sum::<f64>()
-            })
-            .sum()
-    }
-
-    /// Real FFT of every row of `scale · input` into `self.rows`.
-    fn row_pass(&mut self, input: &[f64], scale: f64) {
-        let (nx, nxc) = (self.nx, self.nxc);
-        debug_assert_eq!(input.len(), nx * self.ny);
-        let per_task = rows_per_chunk(nx);
-        let row_fwd = &self.row_fwd;
-        self.rows
-            .par_chunks_mut(nxc * per_task)
-            .zip(input.par_chunks(nx * per_task))
-            .for_each_init(
-                || (vec![0.0; nx], row_fwd.make_scratch_vec()),
-                |(buf, scratch), (out, inp)| {
-                    for (o, i) in out.chunks_exact_mut(nxc).zip(inp.chunks_exact(nx)) {
-                        for (b, v) in buf.iter_mut().zip(i) {
-                            *b = scale * v;
-                        }
-                        row_fwd
-                            .process_with_scratch(buf, o, scratch)
-                            .expect("buffer lengths are fixed when the plan is made");
-                    }
-                },
-            );
-    }
 }
 
-/// Copy columns `c0..c0 + w` of the `ny × nxc` row spectra into `buf`, column-major
-/// (`buf[j * ny + y]`).
-fn gather_strip(
-    rows: &[Complex64],
-    nxc: usize,
-    ny: usize,
-    c0: usize,
-    w: usize,
-    buf: &mut [Complex64],
-) {
-    for y in 0..ny {
-        let src = &rows[y * nxc + c0..y * nxc + c0 + w];
+/// Copy a strip of `w` columns stored row by row (`strip[y * w + j]`) into `buf` column by
+/// column (`buf[j * cs + y]`, `cs ≥ ny`).
+fn transpose(strip: &[Complex64], w: usize, ny: usize, cs: usize, buf: &mut [Complex64]) {
+    for (y, src) in strip.chunks_exact(w).take(ny).enumerate() {
         for (j, v) in src.iter().enumerate() {
-            buf[j * ny + y] = *v;
+            buf[j * cs + y] = *v;
         }
     }
 }
@@ -249,11 +300,42 @@ mod tests {
 
     const SIZES: [(usize, usize); 6] = [(8, 6), (7, 5), (16, 1), (1, 9), (12, 12), (37, 20)];
 
+    /// Strip widths: one column, strips that do not divide the half spectrum, the default's
+    /// lower bound and a single strip.
+    const WIDTHS: [usize; 4] = [1, 3, 8, 64];
+
+    #[test]
+    fn results_do_not_depend_on_the_strip_width() {
+        // Each column is transformed by the same plan whatever the strip it is in, so the
+        // results are the same bit for bit.
+        let (nx, ny) = (37, 20);
+        let field = test_field(nx, ny);
+        let multiply = |kx: usize, col: &mut [Complex64]| {
+            for (ky, c) in col.iter_mut().enumerate() {
+                *c *= 1.0 / (1.0 + (kx * kx + ky * ky) as f64);
+            }
+        };
+        let run = |width| {
+            let mut out = vec![0.0; nx * ny];
+            Fft2::with_width(nx, ny, width).filter(&field, &mut out, multiply);
+            out
+        };
+        let want = run(1);
+        for width in WIDTHS {
+            let got = run(width);
+            assert!(
+                got.iter()
+                    .zip(&want)
+                    .all(|(a, b)| a.to_bits() == b.to_bits())
+            );
+        }
+    }
+
     #[test]
     fn spectrum_matches_direct_dft() {
-        for &(nx, ny) in &SIZES {
+        for (&(nx, ny), width) in SIZES.iter().flat_map(|s| WIDTHS.map(move |w| (s, w))) {
             let field = test_field(nx, ny);
-            let mut plan = Fft2::new(nx, ny);
+            let mut plan = Fft2::with_width(nx, ny, width);
             // Visit each coefficient by weighting it with a distinct number: the sum of
             // Re(c)·a + Im(c)·b over all (kx, ky) must match the direct DFT's.
             let weight = |kx: usize, ky: usize| (1.0 + kx as f64 * 0.37, 0.5 + ky as f64 * 0.11);
@@ -283,9 +365,9 @@ mod tests {
 
     #[test]
     fn identity_filter_round_trips_and_shift_filter_shifts() {
-        for &(nx, ny) in &SIZES {
+        for (&(nx, ny), width) in SIZES.iter().flat_map(|s| WIDTHS.map(move |w| (s, w))) {
             let field = test_field(nx, ny);
-            let mut plan = Fft2::new(nx, ny);
+            let mut plan = Fft2::with_width(nx, ny, width);
             let inv_n = 1.0 / (nx * ny) as f64;
             let mut back = vec![0.0; nx * ny];
             plan.filter(&field, &mut back, |_, col| {

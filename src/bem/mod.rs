@@ -30,6 +30,8 @@
 //! penetration outside it must both be at most `gap_tol · h_rms`; the load balance is exact by
 //! construction (reported). The result always carries iterations, residuals and the
 //! [`Termination`].
+//! A cold start on a grid of 512² pixels or more begins from the solution on the map at half
+//! the resolution (`multilevel`), so the full-grid iteration starts near its contact set.
 //!
 //! # Interface stresses
 //! For one Fourier mode of the surface pressure, the normal stress at z = d is f(qd) times it and
@@ -45,6 +47,7 @@
 
 mod fft;
 pub mod free;
+mod multilevel;
 pub mod sliding;
 mod stack;
 pub use free::Boundary;
@@ -194,7 +197,8 @@ impl Default for BemSettings {
 /// How the solver ended, in physical units.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Convergence {
-    /// Conjugate-gradient iterations (each costs two or four real FFTs).
+    /// Conjugate-gradient iterations on the full grid (each costs two or four real FFTs); the
+    /// iterations of a coarse-to-fine start's solve on the coarse map are not counted.
     pub iterations: usize,
     /// Restarts of the conjugate directions (a direction that was not a descent direction on
     /// the updated contact set was replaced by the gradient).
@@ -516,6 +520,19 @@ fn solve_compliance_from<K>(
 where
     K: Fn(f64) -> f64 + Sync,
 {
+    solve_from_dyn(surface, &compliance, p0, settings, start)
+}
+
+/// [`solve_compliance_from`] with the compliance behind a reference (the coarse-to-fine start
+/// calls it again on the coarse map). A cold start on a large grid begins from the prolonged
+/// solution on the coarse map ([`multilevel`]).
+fn solve_from_dyn(
+    surface: &Surface,
+    compliance: &(dyn Fn(f64) -> f64 + Sync),
+    p0: f64,
+    settings: &BemSettings,
+    start: Option<&[f64]>,
+) -> Result<BemSolution, Error> {
     check_pressure(p0)?;
     if !(settings.gap_tol > 0.0 && settings.gap_tol.is_finite()) {
         return Err(Error::invalid(
@@ -524,6 +541,11 @@ where
             "a finite value > 0 (relative to h_rms)",
         ));
     }
+    let coarse_start = match start {
+        Some(_) => None,
+        None => multilevel::coarse_start(surface, compliance, p0, settings),
+    };
+    let start = coarse_start.as_deref().or(start);
     let (nx, ny) = (surface.nx, surface.ny);
     let n = nx * ny;
     let mut plan = Fft2::new(nx, ny);
@@ -555,6 +577,7 @@ where
         Some(start) => warm_pressure(start, n, p0)?,
         None => vec![p0; n],
     };
+    drop(coarse_start);
     let mut u = vec![0.0; n];
     let mut g = vec![0.0; n];
     let mut t = vec![0.0; n];

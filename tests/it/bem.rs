@@ -532,3 +532,69 @@ fn converges_to_an_admissible_solution_across_thickness_and_load() {
         }
     }
 }
+
+#[test]
+fn coarse_to_fine_start_converges_to_the_cold_solution() {
+    // A 512² cold solve starts from the solution on the 256² map; started from the full
+    // contact instead (a uniform warm start), it must reach the same solution to the solver
+    // tolerance, in more iterations.
+    let n = 512;
+    let l = 1e-3;
+    let q_l = 2.0 * PI / l;
+    let map = self_affine_map(&SynthSpec {
+        n,
+        dx: l / n as f64,
+        hurst: 0.8,
+        q0: q_l,
+        q1: 64.0 * q_l,
+        amplitude: Amplitude::RmsSlope(0.1),
+        seed: 1,
+    })
+    .unwrap();
+    let s = Surface::from_height_map(&map).unwrap();
+    let layers = rubber_on_steel();
+    let stack = Stack::new(layers, 1.0 / s.q_low()).unwrap();
+    let p0 = 0.035 * layers.film.e_star() * 0.1;
+    let settings = BemSettings::default();
+    let fast = bem::solve(&s, &stack, p0, &settings).unwrap();
+    let cold = bem::solve_from(&s, &stack, p0, &settings, &vec![p0; s.len()]).unwrap();
+    let (cf, cc) = (fast.convergence, cold.convergence);
+    assert_eq!(cf.status, Termination::Converged);
+    assert_eq!(cc.status, Termination::Converged);
+    assert!(
+        cf.iterations < cc.iterations,
+        "{} vs {}",
+        cf.iterations,
+        cc.iterations
+    );
+    let tol = cf.tolerance;
+    let mut differ = 0;
+    let pairs = fast.pressure.iter().zip(&fast.gap);
+    for (i, ((pf, gf), (pc, gc))) in pairs.zip(cold.pressure.iter().zip(&cold.gap)).enumerate() {
+        if (*pf > 0.0) != (*pc > 0.0) {
+            differ += 1;
+            // In contact in one and not in the other: a pixel at the edge of the contact,
+            // within the tolerance of touching in both.
+            let gap = if *pf > 0.0 { gc } else { gf };
+            assert!(
+                gap.abs() <= 10.0 * tol,
+                "pixel {i}: gap {gap:e}, tol {tol:e}"
+            );
+        }
+    }
+    let a = fast.area_fraction;
+    let area_diff = (a.value - cold.area_fraction.value).abs();
+    eprintln!(
+        "iterations {} vs {}, {differ} pixels differ, A/A0 {} vs {} (err {:e})",
+        cf.iterations, cc.iterations, a.value, cold.area_fraction.value, a.err
+    );
+    assert!(area_diff <= a.err + cold.area_fraction.err, "{area_diff:e}");
+    let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt();
+    let dp: Vec<f64> = fast
+        .pressure
+        .iter()
+        .zip(&cold.pressure)
+        .map(|(a, b)| a - b)
+        .collect();
+    eprintln!("rms pressure difference / p0 {:e}", rms(&dp) / p0);
+}
