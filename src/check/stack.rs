@@ -299,10 +299,12 @@ impl StackChecker {
             let shear = sliding.map(|s| &s[k]);
             let (tau_peak, exceedance) = self.shear_peak(layer, tau, shear, extras, how)?;
             let at = |s: f64| NormalStress { p0, sigma_rms: s };
-            let mut sigma_peak = at(sigma.value).peak(eps);
-            sigma_peak.status = Estimate::worst(sigma_peak.status, sigma.status);
-            sigma_peak.err +=
-                (at(sigma.value + sigma.err).peak(eps).value - sigma_peak.value).abs();
+            let sigma_peak = || {
+                let mut peak = at(sigma.value).peak(eps);
+                peak.status = Estimate::worst(peak.status, sigma.status);
+                peak.err += (at(sigma.value + sigma.err).peak(eps).value - peak.value).abs();
+                peak
+            };
             if on.bond_shear && ic.tau_rms.is_some() {
                 checks.push(StackCheck {
                     at: layer.name.clone(),
@@ -319,7 +321,7 @@ impl StackChecker {
                     at: "substrate".into(),
                     result: upper_check(
                         CheckKind::SubstrateYield,
-                        yield_governing(sigma_peak, mean, |e: &Estimate| e.value),
+                        yield_governing(sigma_peak(), mean, |e: &Estimate| e.value),
                         limit(y, sf),
                     ),
                 });
@@ -337,7 +339,7 @@ impl StackChecker {
                 sigma_rms: sigma,
                 tau_rms: tau,
                 tau_peak,
-                sigma_peak,
+                sigma_peak: sigma_peak(),
                 bond_strength: layer.bond_strength,
                 bond_exceedance,
                 sliding: shear.copied(),
