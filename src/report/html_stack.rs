@@ -8,13 +8,57 @@ use super::check::{check_cells, scene_rows};
 use super::html::{Section, lever_text, spectrum_plot};
 use super::{margin_cell, modulus, mpa, sig, um, utilisation_cell};
 use crate::Error;
-use crate::check::stack::StackOutcome;
+use crate::check::stack::{StackDesign, StackOutcome};
 use crate::pipeline::Judged;
 use crate::prec::Estimate;
+use crate::scene::Scene;
 
 /// An estimate in MPa with its error ("0.2216 ± 2.4e-11 MPa").
 fn pm_mpa(e: &Estimate) -> String {
     format!("{} ± {} MPa", mpa(e.value), sig(e.err * 1e-6, 2))
+}
+
+/// The inputs table of a stack's scene: the scene's rows without the film's (the top layer's
+/// in a stack: the layers' rows replace them), a row per layer, `thickness_of` and the sources.
+fn inputs(scene: &Scene, design: &StackDesign) -> Vec<(String, String)> {
+    let mut inputs: Vec<(String, String)> = scene_rows(scene)
+        .into_iter()
+        .filter(|(k, _)| !matches!(k.as_str(), "film" | "film thickness" | "bond"))
+        .collect();
+    for (l, s) in design.layers.iter().zip(&scene.layers) {
+        inputs.push((
+            format!("layer '{}'", l.name),
+            format!(
+                "{}: E = {}, nu = {}, thickness {} µm; bond to below: {} ({} MPa)",
+                s.material.name,
+                modulus(l.material.youngs),
+                l.material.poisson,
+                um(l.thickness),
+                s.bond.name,
+                mpa(l.bond_strength)
+            ),
+        ));
+    }
+    inputs.push((
+        "thickness_of".into(),
+        format!(
+            "layer '{}' (min-thickness varies it, the others fixed)",
+            design.layers[design.thickness_of].name
+        ),
+    ));
+    for s in &scene.layers {
+        inputs.push((
+            format!("source of {}", s.material.name),
+            s.material.source.clone(),
+        ));
+        inputs.push((format!("source of {}", s.bond.name), s.bond.source.clone()));
+    }
+    inputs.push((
+        format!("source of {}", scene.substrate.name),
+        scene.substrate.source.clone(),
+    ));
+    inputs.dedup();
+    inputs
 }
 
 /// The section of one judged stack `o` (its scene and levers in `j`).
@@ -56,44 +100,7 @@ pub fn section(title: &str, j: &Judged, o: &StackOutcome) -> Result<Section, Err
         ),
         None => headline,
     };
-    // The film's rows of a scene are the top layer's in a stack: the layers' rows replace them.
-    let mut inputs: Vec<(String, String)> = scene_rows(scene)
-        .into_iter()
-        .filter(|(k, _)| !matches!(k.as_str(), "film" | "film thickness" | "bond"))
-        .collect();
-    for (l, s) in design.layers.iter().zip(&scene.layers) {
-        inputs.push((
-            format!("layer '{}'", l.name),
-            format!(
-                "{}: E = {}, nu = {}, thickness {} µm; bond to below: {} ({} MPa)",
-                s.material.name,
-                modulus(l.material.youngs),
-                l.material.poisson,
-                um(l.thickness),
-                s.bond.name,
-                mpa(l.bond_strength)
-            ),
-        ));
-    }
-    inputs.push((
-        "thickness_of".into(),
-        format!(
-            "layer '{}' (min-thickness varies it, the others fixed)",
-            design.layers[design.thickness_of].name
-        ),
-    ));
-    for s in &scene.layers {
-        inputs.push((
-            format!("source of {}", s.material.name),
-            s.material.source.clone(),
-        ));
-        inputs.push((format!("source of {}", s.bond.name), s.bond.source.clone()));
-    }
-    inputs.push((
-        format!("source of {}", scene.substrate.name),
-        scene.substrate.source.clone(),
-    ));
-    inputs.dedup();
+    let inputs = inputs(scene, &design);
     let c = &o.contact.top;
     let mut results = vec![
         ("A/A0 (real contact area fraction)".into(), {
