@@ -299,12 +299,13 @@ impl StackChecker {
             let shear = sliding.map(|s| &s[k]);
             let (tau_peak, exceedance) = self.shear_peak(layer, tau, shear, extras, how)?;
             let at = |s: f64| NormalStress { p0, sigma_rms: s };
-            let sigma_peak = || {
+            let yield_here = k == last && on.substrate_yield && ic.sigma_rms.is_some();
+            let sigma_peak = (extras || yield_here).then(|| {
                 let mut peak = at(sigma.value).peak(eps);
                 peak.status = Estimate::worst(peak.status, sigma.status);
                 peak.err += (at(sigma.value + sigma.err).peak(eps).value - peak.value).abs();
                 peak
-            };
+            });
             if on.bond_shear && ic.tau_rms.is_some() {
                 checks.push(StackCheck {
                     at: layer.name.clone(),
@@ -315,18 +316,18 @@ impl StackChecker {
                     ),
                 });
             }
-            if k == last && on.substrate_yield && ic.sigma_rms.is_some() {
+            if let (true, Some(peak)) = (yield_here, sigma_peak) {
                 let y = d.yield_strength.expect("checked in new");
                 checks.push(StackCheck {
                     at: "substrate".into(),
                     result: upper_check(
                         CheckKind::SubstrateYield,
-                        yield_governing(sigma_peak(), mean, |e: &Estimate| e.value),
+                        yield_governing(peak, mean, |e: &Estimate| e.value),
                         limit(y, sf),
                     ),
                 });
             }
-            let Some(bond_exceedance) = exceedance else {
+            let (Some(bond_exceedance), Some(sigma_peak)) = (exceedance, sigma_peak) else {
                 continue;
             };
             let tau_peak_static = match shear {
@@ -339,7 +340,7 @@ impl StackChecker {
                 sigma_rms: sigma,
                 tau_rms: tau,
                 tau_peak,
-                sigma_peak: sigma_peak(),
+                sigma_peak,
                 bond_strength: layer.bond_strength,
                 bond_exceedance,
                 sliding: shear.copied(),
