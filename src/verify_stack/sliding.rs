@@ -48,14 +48,24 @@ pub fn with_friction(
     if mu == 0.0 {
         return Ok(fields.into_iter().map(|f| (f, None)).collect());
     }
+    Ok(friction_totals(solution, stack, &fields, mu)?
+        .into_iter()
+        .map(|(total, summary)| (total, Some(summary)))
+        .collect())
+}
+
+/// Every interface's total fields under the friction traction μ·p along x (top first): the
+/// static `fields` plus the friction-driven ones, with the sliding summary.
+fn friction_totals(
+    solution: &BemSolution,
+    stack: &Stack,
+    fields: &[InterfaceFields],
+    mu: f64,
+) -> Result<Vec<(InterfaceFields, ExactSliding)>, Error> {
     fields
         .iter()
         .enumerate()
-        .map(|(k, f)| {
-            let (total, summary) =
-                with_friction_kernels(solution, f, mu, interface_kernels(stack, k))?;
-            Ok((total, Some(summary)))
-        })
+        .map(|(k, f)| with_friction_kernels(solution, f, mu, interface_kernels(stack, k)))
         .collect()
 }
 
@@ -96,7 +106,7 @@ pub fn compare_sliding(
     let surface = Surface::from_height_map(map)?;
     let started = std::time::Instant::now();
     let (solution, static_fields) = super::solve(&surface, stack, p0, bem)?;
-    let sliding = with_friction(&solution, stack, static_fields.clone(), mu)?;
+    let sliding = friction_totals(&solution, stack, &static_fields, mu)?;
     let seconds = started.elapsed().as_secs_f64();
     let (theory, shears) = Engine::new(&map_spectrum(map)?, settings).evaluate_stack_sliding(
         stack,
@@ -113,7 +123,6 @@ pub fn compare_sliding(
     let mut exact = Vec::with_capacity(sliding.len());
     let mut interfaces = Vec::with_capacity(sliding.len());
     for (k, (total, summary)) in sliding.into_iter().enumerate() {
-        let summary = summary.expect("mu > 0 gives every interface a summary");
         let ic = &theory.interfaces[k];
         let above_bond = bond.map(|b| total.shear_fraction_above(b));
         let mut r = vec![Row::new(
