@@ -19,11 +19,12 @@ fn show(p: Param, v: f64) -> String {
 }
 
 /// `min` or `max`: which end of its range a corner takes.
-fn end(v: f64, min: f64) -> &'static str {
+pub(super) fn end(v: f64, min: f64) -> &'static str {
     if v == min { "min" } else { "max" }
 }
 
-fn verdict(pass: bool) -> &'static str {
+/// PASS or FAIL.
+pub(super) fn verdict(pass: bool) -> &'static str {
     if pass { "PASS" } else { "FAIL" }
 }
 
@@ -37,7 +38,8 @@ fn nominal_d_min(outcome: &Outcome) -> Option<f64> {
 }
 
 /// "2.1 µm to 8.3 µm" (an end where no thickness passes: "none passes").
-fn d_min_text(v: Option<f64>) -> String {
+/// A d_min (m) in µm, or "none passes".
+pub(super) fn d_min_text(v: Option<f64>) -> String {
     v.map_or("none passes".into(), |d| format!("{} µm", um(d)))
 }
 

@@ -6,7 +6,8 @@
 //! sentences for the HTML report.
 
 use super::check::{check_json, check_rows_of};
-use super::{modulus, mpa, table, um, wrap};
+use super::robust::{d_min_text, end, verdict};
+use super::{modulus, mpa, table, wrap};
 use crate::check::stack::{StackDesign, StackOutcome};
 use crate::check::stack_robust::{MAX_VARIED, StackParam, StackRobust};
 use serde_json::{Map, Value, json};
@@ -20,25 +21,12 @@ fn show(p: StackParam, v: f64) -> String {
     }
 }
 
-/// `min` or `max`: which end of its range a corner takes.
-fn end(v: f64, min: f64) -> &'static str {
-    if v == min { "min" } else { "max" }
-}
-
-fn verdict(pass: bool) -> &'static str {
-    if pass { "PASS" } else { "FAIL" }
-}
-
 /// The nominal d_min (m), when min-thickness ran and a thickness passes.
 fn nominal_d_min(o: &StackOutcome) -> Option<f64> {
     o.min_thickness
         .as_ref()
         .and_then(|m| m.thickness)
         .map(|e| e.value)
-}
-
-fn d_min_text(v: Option<f64>) -> String {
-    v.map_or("none passes".into(), |d| format!("{} µm", um(d)))
 }
 
 /// Whether range `i` is held at one end.
