@@ -55,6 +55,11 @@ pub(crate) struct Fft2 {
 }
 
 impl Fft2 {
+    /// Row length (the grid's nx).
+    pub(crate) fn nx(&self) -> usize {
+        self.nx
+    }
+
     pub(crate) fn new(nx: usize, ny: usize) -> Self {
         Self::with_width(nx, ny, (STRIP_BYTES / (16 * ny.max(1))).clamp(8, 64))
     }
@@ -101,10 +106,79 @@ impl Fft2 {
     ) where
         M: Fn(usize, &mut [Complex64]) + Sync,
     {
+        self.filter_scaled_then(input, scale, output, multiply, |_, _, _| []);
+    }
+
+    /// [`Self::filter_scaled`], then `finish(y, input_row, output_row)` on every output row while
+    /// it is in cache (it may rewrite the row); returns `finish`'s results, one per row in row
+    /// order.
+    pub(crate) fn filter_scaled_then<M, F, const B: usize>(
+        &mut self,
+        input: &[f64],
+        scale: f64,
+        output: &mut [f64],
+        multiply: M,
+        finish: F,
+    ) -> Vec<[f64; B]>
+    where
+        M: Fn(usize, &mut [Complex64]) + Sync,
+        F: Fn(usize, &[f64], &mut [f64]) -> [f64; B] + Sync,
+    {
         debug_assert_eq!(output.len(), self.nx * self.ny);
-        self.row_pass(input, scale);
+        let nx = self.nx;
+        self.row_pass(
+            input.par_chunks(nx * rows_per_chunk(nx)),
+            |chunk: &mut &[f64], k, _, buf| {
+                for (b, v) in buf.iter_mut().zip(&chunk[k * nx..(k + 1) * nx]) {
+                    *b = scale * v;
+                }
+                []
+            },
+        );
         self.column_pass(multiply);
-        self.inverse_row_pass(output);
+        self.inverse_row_pass(input, output, finish)
+    }
+
+    /// [`Self::filter`] of `input` after `prepare(y, row)` has rewritten each of its rows in
+    /// place (as the row is read for its transform), then `finish(y, input_row, output_row)` on
+    /// every output row while it is in cache, `finish` being made by `make_finish` from the sums
+    /// over the rows (in row order) of `prepare`'s results. Returns those sums and `finish`'s
+    /// results, one per row in row order: the same values as `prepare` over the rows, the filter
+    /// and `finish` over the rows as separate passes, in one pass over each field.
+    pub(crate) fn filter_rows<P, M, G, F, const A: usize, const B: usize>(
+        &mut self,
+        input: &mut [f64],
+        prepare: P,
+        output: &mut [f64],
+        multiply: M,
+        make_finish: G,
+    ) -> ([f64; A], Vec<[f64; B]>)
+    where
+        P: Fn(usize, &mut [f64]) -> [f64; A] + Sync,
+        M: Fn(usize, &mut [Complex64]) + Sync,
+        G: FnOnce([f64; A]) -> F,
+        F: Fn(usize, &[f64], &mut [f64]) -> [f64; B] + Sync,
+    {
+        debug_assert_eq!(output.len(), self.nx * self.ny);
+        let nx = self.nx;
+        let prepared = self.row_pass(
+            input.par_chunks_mut(nx * rows_per_chunk(nx)),
+            |chunk: &mut &mut [f64], k, y, buf| {
+                let row = &mut chunk[k * nx..(k + 1) * nx];
+                let out = prepare(y, row);
+                buf.copy_from_slice(row);
+                out
+            },
+        );
+        let mut sums = [0.0; A];
+        for row in &prepared {
+            for (s, v) in sums.iter_mut().zip(row) {
+                *s += v;
+            }
+        }
+        self.column_pass(multiply);
+        let finished = self.inverse_row_pass(input, output, make_finish(sums));
+        (sums, finished)
     }
 
     /// Σ over half-spectrum columns of `visit(kx, column)` (column over ky, wrap-around order)
@@ -113,7 +187,14 @@ impl Fft2 {
     where
         V: Fn(usize, &[Complex64]) -> f64 + Sync,
     {
-        self.row_pass(input, 1.0);
+        let nx = self.nx;
+        self.row_pass(
+            input.par_chunks(nx * rows_per_chunk(nx)),
+            |chunk: &mut &[f64], k, _, buf| {
+                buf.copy_from_slice(&chunk[k * nx..(k + 1) * nx]);
+                []
+            },
+        );
         let (ny, nxc, width) = (self.ny, self.nxc, self.width);
         let col_fwd = &self.col_fwd;
         let columns: Vec<f64> = self
@@ -142,11 +223,18 @@ impl Fft2 {
         (0..groups.len()).into_par_iter().map(|i| groups[i]).sum()
     }
 
-    /// Real FFT of every row of `scale · input` into the strips of `self.spec`.
-    fn row_pass(&mut self, input: &[f64], scale: f64) {
+    /// Real FFT of every row into the strips of `self.spec`. `chunks` are the input's runs of
+    /// [`rows_per_chunk`] rows; `fill(chunk, k, y, buf)` puts row `k` of a chunk (grid row y)
+    /// into the transform buffer `buf`; its results are returned one per row in row order.
+    fn row_pass<T, C, R, const A: usize>(&mut self, chunks: C, fill: R) -> Vec<[f64; A]>
+    where
+        T: Send,
+        C: IndexedParallelIterator<Item = T>,
+        R: Fn(&mut T, usize, usize, &mut [f64]) -> [f64; A] + Sync,
+    {
         let (nx, ny, nxc, width) = (self.nx, self.ny, self.nxc, self.width);
-        debug_assert_eq!(input.len(), nx * ny);
         let per_task = rows_per_chunk(nx);
+        debug_assert_eq!(chunks.len(), ny.div_ceil(per_task));
         // Each task's rows occupy one contiguous run of every strip.
         let mut tasks: Vec<Vec<&mut [Complex64]>> = (0..ny.div_ceil(per_task))
             .map(|_| Vec::with_capacity(nxc.div_ceil(width)))
@@ -160,29 +248,42 @@ impl Fft2 {
                 task.push(run);
             }
         }
+        let mut results = vec![[0.0; A]; ny];
         let row_fwd = &self.row_fwd;
+        // A task transforms its rows into a block that stays in cache, then copies the block
+        // to the strips one contiguous run at a time.
         tasks
             .into_par_iter()
-            .zip(input.par_chunks(nx * per_task))
+            .zip(chunks)
+            .zip(results.par_chunks_mut(per_task))
+            .enumerate()
             .for_each_init(
-                || (vec![0.0; nx], vec![ZERO; nxc], row_fwd.make_scratch_vec()),
-                |(buf, row, scratch), (mut runs, inp)| {
-                    for (k, i) in inp.chunks_exact(nx).enumerate() {
-                        for (b, v) in buf.iter_mut().zip(i) {
-                            *b = scale * v;
-                        }
+                || {
+                    (
+                        vec![0.0; nx],
+                        vec![ZERO; nxc * per_task],
+                        row_fwd.make_scratch_vec(),
+                    )
+                },
+                |(buf, block, scratch), (ci, ((runs, mut chunk), res))| {
+                    let rows = res.len();
+                    for (k, (out, row)) in
+                        res.iter_mut().zip(block.chunks_exact_mut(nxc)).enumerate()
+                    {
+                        *out = fill(&mut chunk, k, ci * per_task + k, buf);
                         row_fwd
                             .process_with_scratch(buf, row, scratch)
                             .expect("buffer lengths are fixed when the plan is made");
-                        for (run, src) in runs.iter_mut().zip(row.chunks(width)) {
-                            let w = src.len();
-                            for (d, v) in run[k * w..(k + 1) * w].iter_mut().zip(src) {
-                                *d = *v;
-                            }
+                    }
+                    for (s, run) in runs.into_iter().enumerate() {
+                        let w = run.len() / rows;
+                        for (k, dst) in run.chunks_exact_mut(w).enumerate() {
+                            dst.copy_from_slice(&block[k * nxc + s * width..][..w]);
                         }
                     }
                 },
             );
+        results
     }
 
     /// Per strip: the column FFTs, `multiply` and the inverse column FFTs, in place.
@@ -225,28 +326,47 @@ impl Fft2 {
             );
     }
 
-    /// Gather every row from the strips and inverse real FFT it into `output`.
-    fn inverse_row_pass(&mut self, output: &mut [f64]) {
-        let (nx, nxc, width, stride) = (self.nx, self.nxc, self.width, self.stride);
+    /// Gather every row from the strips, inverse real FFT it into `output` and apply
+    /// `finish(y, input_row, output_row)` to it (`input`: the filtered field); returns
+    /// `finish`'s results, one per row in row order.
+    fn inverse_row_pass<F, const B: usize>(
+        &mut self,
+        input: &[f64],
+        output: &mut [f64],
+        finish: F,
+    ) -> Vec<[f64; B]>
+    where
+        F: Fn(usize, &[f64], &mut [f64]) -> [f64; B] + Sync,
+    {
+        let (nx, ny, nxc, width, stride) = (self.nx, self.ny, self.nxc, self.width, self.stride);
         let even = nx.is_multiple_of(2);
         let spec = &self.spec;
         let row_inv = &self.row_inv;
         let per_task = rows_per_chunk(nx);
+        let mut results = vec![[0.0; B]; ny];
+        // A task copies its rows' contiguous run of every strip into a block that stays in
+        // cache, then transforms the rows of the block.
         output
             .par_chunks_mut(nx * per_task)
+            .zip(results.par_chunks_mut(per_task))
             .enumerate()
             .for_each_init(
-                || (vec![ZERO; nxc], row_inv.make_scratch_vec()),
-                |(row, scratch), (ci, chunk)| {
-                    for (k, orow) in chunk.chunks_exact_mut(nx).enumerate() {
-                        let y = ci * per_task + k;
-                        for (s, dst) in row.chunks_mut(width).enumerate() {
-                            let w = dst.len();
-                            let base = s * stride + y * w;
-                            for (d, v) in dst.iter_mut().zip(&spec[base..base + w]) {
-                                *d = *v;
-                            }
+                || (vec![ZERO; nxc * per_task], row_inv.make_scratch_vec()),
+                |(block, scratch), (ci, (chunk, res))| {
+                    let rows = res.len();
+                    for s in 0..nxc.div_ceil(width) {
+                        let w = width.min(nxc - s * width);
+                        let run = &spec[s * stride + ci * per_task * w..][..rows * w];
+                        for (k, src) in run.chunks_exact(w).enumerate() {
+                            block[k * nxc + s * width..][..w].copy_from_slice(src);
                         }
+                    }
+                    for (k, ((orow, out), row)) in chunk
+                        .chunks_exact_mut(nx)
+                        .zip(res)
+                        .zip(block.chunks_exact_mut(nxc))
+                        .enumerate()
+                    {
                         row[0].im = 0.0;
                         if even {
                             row[nxc - 1].im = 0.0;
@@ -254,9 +374,12 @@ impl Fft2 {
                         row_inv.process_with_scratch(row, orow, scratch).expect(
                             "lengths are fixed by the plan and constrained parts are zeroed",
                         );
+                        let y = ci * per_task + k;
+                        *out = finish(y, &input[y * nx..(y + 1) * nx], orow);
                     }
                 },
             );
+        results
     }
 }
 
@@ -394,6 +517,74 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+    #[test]
+    fn row_callbacks_match_separate_passes() {
+        // prepare: x ← 2x − 1 with Σ x of the row; finish: out ← out + y·in with Σ out of the
+        // row. The fused calls must give the same fields and per-row sums as the separate
+        // passes, bit for bit (the same operations on the same values).
+        let multiply = |kx: usize, col: &mut [Complex64]| {
+            for (ky, c) in col.iter_mut().enumerate() {
+                *c *= 1.0 / (2.0 + (kx * kx + 3 * ky) as f64);
+            }
+        };
+        let prepare = |_: usize, row: &mut [f64]| {
+            row.iter_mut().for_each(|x| *x = 2.0 * *x - 1.0);
+            [row.iter().sum::<f64>()]
+        };
+        let finish = |y: usize, inp: &[f64], out: &mut [f64]| {
+            for (o, i) in out.iter_mut().zip(inp) {
+                *o += y as f64 * i;
+            }
+            [out.iter().sum::<f64>(), 1.0]
+        };
+        for (&(nx, ny), width) in SIZES.iter().flat_map(|s| WIDTHS.map(move |w| (s, w))) {
+            let mut plan = Fft2::with_width(nx, ny, width);
+            let field = test_field(nx, ny);
+            // Separate passes.
+            let mut input = field.clone();
+            let prepared: Vec<[f64; 1]> = input
+                .chunks_exact_mut(nx)
+                .enumerate()
+                .map(|(y, row)| prepare(y, row))
+                .collect();
+            let mut want = vec![0.0; nx * ny];
+            plan.filter(&input, &mut want, multiply);
+            let want_rows: Vec<[f64; 2]> = want
+                .chunks_exact_mut(nx)
+                .zip(input.chunks_exact(nx))
+                .enumerate()
+                .map(|(y, (out, inp))| finish(y, inp, out))
+                .collect();
+            let sum: f64 = prepared.iter().map(|s| s[0]).sum();
+            // Fused.
+            let mut fused_input = field.clone();
+            let mut got = vec![0.0; nx * ny];
+            let (sums, got_rows) =
+                plan.filter_rows(&mut fused_input, prepare, &mut got, multiply, |s| {
+                    assert_eq!(s[0].to_bits(), sum.to_bits());
+                    finish
+                });
+            assert_eq!(sums[0].to_bits(), sum.to_bits());
+            let same =
+                |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
+            assert!(same(&fused_input, &input), "{nx}x{ny}");
+            assert!(same(&got, &want), "{nx}x{ny}");
+            assert_eq!(got_rows, want_rows);
+            // The scaled filter with a finishing callback.
+            let scale = 0.37;
+            let scaled: Vec<f64> = field.iter().map(|v| scale * v).collect();
+            plan.filter(&scaled, &mut want, multiply);
+            let want_rows: Vec<[f64; 2]> = want
+                .chunks_exact_mut(nx)
+                .zip(field.chunks_exact(nx))
+                .enumerate()
+                .map(|(y, (out, inp))| finish(y, inp, out))
+                .collect();
+            let got_rows = plan.filter_scaled_then(&field, scale, &mut got, multiply, finish);
+            assert!(same(&got, &want), "{nx}x{ny}");
+            assert_eq!(got_rows, want_rows);
         }
     }
 }

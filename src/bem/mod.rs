@@ -48,6 +48,7 @@
 mod fft;
 pub mod free;
 mod multilevel;
+mod passes;
 pub mod sliding;
 mod stack;
 pub use free::Boundary;
@@ -550,57 +551,59 @@ fn solve_from_dyn(
     let n = nx * ny;
     let mut plan = Fft2::new(nx, ny);
     let kernel = kernel_grid(surface, &compliance)?;
-    // K (scale·input): the scale is applied as the rows are read.
-    let convolve = |plan: &mut Fft2, input: &[f64], scale: f64, out: &mut [f64]| {
-        plan.filter_scaled(input, scale, out, |kx, col| {
-            for (c, k) in col.iter_mut().zip(&kernel[kx * ny..(kx + 1) * ny]) {
-                *c *= *k;
-            }
-        })
+    // Multiplication by K on the half spectrum.
+    let multiply = |kx: usize, col: &mut [Complex64]| {
+        for (c, k) in col.iter_mut().zip(&kernel[kx * ny..(kx + 1) * ny]) {
+            *c *= *k;
+        }
     };
     // The periodic real-space influence matrix's first column: the response to a unit pressure
     // at pixel 0 (its mean is zero, as the kernel's q = 0 entry).
     let mut green = vec![0.0; n];
     let mut unit = vec![0.0; n];
     unit[0] = 1.0;
-    convolve(&mut plan, &unit, 1.0, &mut green);
+    plan.filter(&unit, &mut green, multiply);
     drop(unit);
+    let field = Field {
+        nx,
+        ny,
+        green: &green,
+    };
     let mean_h = surface.mean();
     let h: Vec<f64> = surface.heights.iter().map(|v| v - mean_h).collect();
     let h_rms = surface.h_rms();
     let tol = settings.gap_tol * h_rms;
 
     // p: admissible pressure (p ≥ 0, mean p0) is ps·p, the rescaling to the mean p0 of each step
-    // being applied when p is next read; u = K ps·p; g: gap; t: conjugate direction; r = K t.
+    // being applied when p is next read; contact: p > 0; graw = u − h with u = K ps·p, the gap
+    // being graw − ḡ (`passes`); t: conjugate direction; r = K t.
     let mut ps = 1.0;
     let mut p = match start {
         Some(start) => warm_pressure(start, n, p0)?,
         None => vec![p0; n],
     };
     drop(coarse_start);
-    let mut u = vec![0.0; n];
-    let mut g = vec![0.0; n];
-    let mut t = vec![0.0; n];
-    let mut r = vec![0.0; n];
-    let mut g_old = 1.0;
-    let mut restarts = 0usize;
-    let mut iterations = 0;
+    let mut contact: Vec<bool> = p.iter().map(|&v| v > 0.0).collect();
+    let (mut graw, mut t, mut r) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let (mut g_old, mut restarts, mut iterations) = (1.0, 0usize, 0);
     // u is recomputed by FFT unless the last update changed few points beyond the linear one:
     // then u ← s(u − step·r + Σ δ_j G_j) is exact (δ_j: the change at a clamped or re-admitted
     // point j beyond p − step·t, G_j: column j of the influence matrix); drift is bounded by a
     // periodic refresh, and every verdict (converged or not) is taken on a freshly computed u.
-    let mut need_fresh = true;
-    let mut since_fresh = 0usize;
+    let (mut need_fresh, mut since_fresh, mut gap) = (true, 0usize, None);
     let (mut gap_rms, mut penetration);
     loop {
-        if need_fresh {
-            convolve(&mut plan, &p, ps, &mut u);
-            need_fresh = false;
-            since_fresh = 0;
-        }
-        let (g2, pen, n_c) = measure_gap(&mut g, &u, &h, &p);
-        gap_rms = (g2 / n_c).sqrt();
-        penetration = pen;
+        let sums = match gap {
+            Some(sums) if !need_fresh => sums,
+            _ => {
+                need_fresh = false;
+                since_fresh = 0;
+                passes::fresh(&mut plan, (&p, ps), &mut graw, multiply, (&h, &contact, &t))
+            }
+        };
+        gap = Some(sums);
+        gap_rms = (sums.g2 / sums.n_c).sqrt();
+        penetration = sums.pen;
         if (gap_rms <= tol && penetration <= tol) || iterations >= settings.max_iter {
             if since_fresh > 0 {
                 need_fresh = true;
@@ -609,38 +612,45 @@ fn solve_from_dyn(
             break;
         }
         iterations += 1;
-        let beta = if iterations > 1 { g2 / g_old } else { 0.0 };
-        g_old = g2;
-        let (mut num, mut sum_t) = direction(&mut t, &g, &p, beta);
+        let mut beta = if iterations > 1 { sums.g2 / g_old } else { 0.0 };
+        g_old = sums.g2;
+        // Σ_c g·t of the new direction t = g + β t.
+        let mut num = sums.g2 + beta * sums.gt;
         if num <= 0.0 && beta != 0.0 {
             // Not a descent direction on the new contact set: restart from the gradient.
             restarts += 1;
-            (num, sum_t) = direction(&mut t, &g, &p, 0.0);
+            beta = 0.0;
+            num = sums.g2;
         }
-        let tbar = sum_t / n_c;
-        convolve(&mut plan, &t, 1.0, &mut r);
-        let step =
-            num / step_denominator("boundary-element contact", &r, &t, &p, tbar, iterations)?;
-        let (total, changes) = project(&mut p, ps, &t, &g, step);
+        let gbar = sums.gbar;
+        let den = passes::conjugate(
+            &mut plan,
+            (&mut t, &mut r),
+            multiply,
+            (&graw, &contact),
+            sums,
+            beta,
+        );
+        let step = num / positive_denominator("boundary-element contact", den, iterations)?;
+        let (total, changes) =
+            passes::project(&mut p, Some(&mut contact), (ps, step), &t, &graw, gbar);
         let scale = p0 * n as f64 / total;
         ps = scale;
         match changes {
-            Some(changes) if since_fresh < REFRESH_EVERY => {
-                let field = Field {
-                    nx,
-                    ny,
-                    green: &green,
-                };
-                field.update(&mut u, &r, step, scale, &changes);
+            Some(ch) if since_fresh < REFRESH_EVERY => {
+                let fields = (&h[..], &r[..], &t[..]);
+                let rows = passes::update(&field, &mut graw, fields, &contact, (step, scale), &ch);
+                gap = Some(passes::GapSums::of(&rows));
                 since_fresh += 1;
             }
             _ => need_fresh = true,
         }
     }
-    chunked(&mut p, |_, pc| {
-        pc.iter_mut().for_each(|pi| *pi *= ps);
-        [0.0; 0]
-    });
+    // The gap g = graw − ḡ and the pressure ps·p.
+    let gbar = gap.map_or(0.0, |sums| sums.gbar);
+    let mut g = graw;
+    g.par_iter_mut().for_each(|gi| *gi -= gbar);
+    p.par_iter_mut().for_each(|pi| *pi *= ps);
     let status = if gap_rms <= tol && penetration <= tol {
         Termination::Converged
     } else {
@@ -685,6 +695,11 @@ fn step_denominator(
         }),
         0,
     );
+    positive_denominator(what, den, iterations)
+}
+
+/// `den` if the conjugate-gradient step's denominator is > 0, else the error naming `what`.
+fn positive_denominator(what: &'static str, den: f64, iterations: usize) -> Result<f64, Error> {
     if den.is_nan() || den <= 0.0 {
         return Err(Error::Numerical {
             what,
@@ -756,42 +771,7 @@ type Changes = Vec<(usize, f64)>;
 /// clamped or re-admitted with their change beyond the linear update ps·p − step·t (t is 0 off
 /// the contact set), in index order.
 fn project(p: &mut [f64], ps: f64, t: &[f64], g: &[f64], step: f64) -> (f64, Option<Changes>) {
-    let parts: Vec<(f64, Changes, bool)> = p
-        .par_chunks_mut(PAR_CHUNK)
-        .enumerate()
-        .map(|(c, pc)| {
-            let o = c * PAR_CHUNK;
-            let (mut total, mut changes, mut many) = (0.0, Vec::new(), false);
-            for (k, (pi, (ti, gi))) in pc.iter_mut().zip(t[o..].iter().zip(&g[o..])).enumerate() {
-                *pi *= ps;
-                let linear = *pi - step * ti;
-                let mut changed = false;
-                if *pi > 0.0 {
-                    if linear <= 0.0 {
-                        changed = true;
-                        *pi = 0.0;
-                    } else {
-                        *pi = linear;
-                    }
-                }
-                if *pi == 0.0 && *gi < 0.0 {
-                    *pi = -step * gi;
-                    changed = true;
-                }
-                if changed && !many {
-                    changes.push((o + k, *pi - linear));
-                    many = changes.len() > SPARSE_MAX;
-                }
-                total += *pi;
-            }
-            (total, changes, many)
-        })
-        .collect();
-    let total = parts.iter().map(|part| part.0).sum();
-    let count: usize = parts.iter().map(|part| part.1.len()).sum();
-    let changes = (count <= SPARSE_MAX && !parts.iter().any(|part| part.2))
-        .then(|| parts.into_iter().flat_map(|part| part.1).collect());
-    (total, changes)
+    passes::project(p, None, (ps, step), t, g, 0.0)
 }
 
 /// A periodic grid's influence matrix, given by its first column `green` (the response at every
@@ -803,30 +783,21 @@ struct Field<'a> {
 }
 
 impl Field<'_> {
-    /// u ← scale·(u − step·r + Σ_j δ_j G_j) for the point changes (j, δ_j).
-    fn update(&self, u: &mut [f64], r: &[f64], step: f64, scale: f64, changes: &[(usize, f64)]) {
+    /// Row y of u ← u + Σ_j δ_j G_j for the point changes (j, δ_j).
+    fn add_columns(&self, y: usize, urow: &mut [f64], changes: &[(usize, f64)]) {
         let (nx, ny, green) = (self.nx, self.ny, self.green);
-        u.par_chunks_mut(nx)
-            .zip(r.par_chunks(nx))
-            .enumerate()
-            .for_each(|(y, (urow, rrow))| {
-                for (ui, ri) in urow.iter_mut().zip(rrow) {
-                    *ui -= step * ri;
-                }
-                for &(j, delta) in changes {
-                    let (xj, yj) = (j % nx, j / nx);
-                    let grow = &green[((y + ny - yj) % ny) * nx..][..nx];
-                    // u(x) += δ G(x − xj): x ≥ xj reads G from 0, x < xj wraps to nx − xj.
-                    let (head, tail) = urow.split_at_mut(xj);
-                    for (ui, gi) in tail.iter_mut().zip(&grow[..nx - xj]) {
-                        *ui += delta * gi;
-                    }
-                    for (ui, gi) in head.iter_mut().zip(&grow[nx - xj..]) {
-                        *ui += delta * gi;
-                    }
-                }
-                urow.iter_mut().for_each(|ui| *ui *= scale);
-            });
+        for &(j, delta) in changes {
+            let (xj, yj) = (j % nx, j / nx);
+            let grow = &green[((y + ny - yj) % ny) * nx..][..nx];
+            // u(x) += δ G(x − xj): x ≥ xj reads G from 0, x < xj wraps to nx − xj.
+            let (head, tail) = urow.split_at_mut(xj);
+            for (ui, gi) in tail.iter_mut().zip(&grow[..nx - xj]) {
+                *ui += delta * gi;
+            }
+            for (ui, gi) in head.iter_mut().zip(&grow[nx - xj..]) {
+                *ui += delta * gi;
+            }
+        }
     }
 }
 
@@ -1136,7 +1107,24 @@ mod tests {
             ny,
             green: &green,
         };
-        green_field.update(&mut u, &r, step, scale, &changes);
+        // The update works on graw = u − h; its gap statistics are those of the result.
+        let h: Vec<f64> = (0..n).map(|i| field(i + 29) * 1e-3).collect();
+        let contact: Vec<bool> = p.iter().map(|&v| v > 0.5).collect();
+        let mut graw: Vec<f64> = u.iter().zip(&h).map(|(a, b)| a - b).collect();
+        let rows = passes::update(
+            &green_field,
+            &mut graw,
+            (&h, &r, &t),
+            &contact,
+            (step, scale),
+            &changes,
+        );
+        for (y, row) in rows.iter().enumerate() {
+            let o = y * nx;
+            let want = passes::gap_row(&graw[o..o + nx], &contact[o..o + nx], &t[o..o + nx]);
+            assert_eq!(row, &want);
+        }
+        let u: Vec<f64> = graw.iter().zip(&h).map(|(a, b)| a + b).collect();
         let mut q: Vec<f64> = p.iter().zip(&t).map(|(a, b)| a - step * b).collect();
         for &(j, d) in &changes {
             q[j] += d;
