@@ -26,6 +26,9 @@
 //! set). On self-affine surfaces this cuts the iterations 2–3× (82 → 45 at 512², 207 → 60 at
 //! 1024² in `examples/bench_bem.rs`' case) for the same converged answer: the stopping test
 //! below is independent of the path.
+//! The conjugate directions are preconditioned with the inverse of the influence operator on the
+//! full grid, a Fourier multiplier 1/K(q) (`precond`), which keeps the iterations from growing
+//! with the size of the contact patches in pixels.
 //! Convergence is judged in physical units: the rms gap on the contact set and the largest
 //! penetration outside it must both be at most `gap_tol · h_rms`; the load balance is exact by
 //! construction (reported). The result always carries iterations, residuals and the
@@ -48,6 +51,7 @@
 mod fft;
 pub mod free;
 mod multilevel;
+mod precond;
 pub mod sliding;
 mod stack;
 pub use free::Boundary;
@@ -197,7 +201,7 @@ impl Default for BemSettings {
 /// How the solver ended, in physical units.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Convergence {
-    /// Conjugate-gradient iterations on the full grid (each costs two or four real FFTs); the
+    /// Conjugate-gradient iterations on the full grid (each costs four or six real FFTs); the
     /// iterations of a coarse-to-fine start's solve on the coarse map are not counted.
     pub iterations: usize,
     /// Restarts of the conjugate directions (a direction that was not a descent direction on
@@ -582,6 +586,8 @@ fn solve_from_dyn(
     let mut g = vec![0.0; n];
     let mut t = vec![0.0; n];
     let mut r = vec![0.0; n];
+    let mut z = vec![0.0; n];
+    let precond = precond::Preconditioner::new(&kernel, nx, ny);
     let mut g_old = 1.0;
     let mut restarts = 0usize;
     let mut iterations = 0;
@@ -609,19 +615,27 @@ fn solve_from_dyn(
             break;
         }
         iterations += 1;
-        let beta = if iterations > 1 { g2 / g_old } else { 0.0 };
-        g_old = g2;
-        let (mut num, mut sum_t) = direction(&mut t, &g, &p, beta);
+        // r is free until K t is formed: it holds the masked gap the preconditioner filters.
+        let (gz, zbar) = precond.apply(&mut plan, &g, &p, n_c, &mut r, &mut z);
+        let beta = if iterations > 1 && g_old > 0.0 {
+            gz / g_old
+        } else {
+            0.0
+        };
+        g_old = gz;
+        let (mut num, mut sum_t) = precond::direction(&mut t, &z, zbar, &g, &p, beta);
         if num <= 0.0 && beta != 0.0 {
-            // Not a descent direction on the new contact set: restart from the gradient.
+            // Not a descent direction on the new contact set: restart from the preconditioned
+            // gradient.
             restarts += 1;
-            (num, sum_t) = direction(&mut t, &g, &p, 0.0);
+            (num, sum_t) = precond::direction(&mut t, &z, zbar, &g, &p, 0.0);
         }
         let tbar = sum_t / n_c;
         convolve(&mut plan, &t, 1.0, &mut r);
         let step =
             num / step_denominator("boundary-element contact", &r, &t, &p, tbar, iterations)?;
-        let (total, changes) = project(&mut p, ps, &t, &g, step);
+        let readmit = step * precond.diagonal();
+        let (total, changes) = project(&mut p, ps, &t, &g, step, readmit);
         let scale = p0 * n as f64 / total;
         ps = scale;
         match changes {
@@ -752,10 +766,17 @@ fn direction(t: &mut [f64], g: &[f64], p: &[f64], beta: f64) -> (f64, f64) {
 type Changes = Vec<(usize, f64)>;
 
 /// p ← ps·p − step·t on the contact set, projected to p ≥ 0, with penetrating points (g < 0)
-/// re-admitted at −step·g; returns Σ p and, if there are at most [`SPARSE_MAX`], the points
+/// re-admitted at −readmit·g; returns Σ p and, if there are at most [`SPARSE_MAX`], the points
 /// clamped or re-admitted with their change beyond the linear update ps·p − step·t (t is 0 off
 /// the contact set), in index order.
-fn project(p: &mut [f64], ps: f64, t: &[f64], g: &[f64], step: f64) -> (f64, Option<Changes>) {
+fn project(
+    p: &mut [f64],
+    ps: f64,
+    t: &[f64],
+    g: &[f64],
+    step: f64,
+    readmit: f64,
+) -> (f64, Option<Changes>) {
     let parts: Vec<(f64, Changes, bool)> = p
         .par_chunks_mut(PAR_CHUNK)
         .enumerate()
@@ -775,7 +796,7 @@ fn project(p: &mut [f64], ps: f64, t: &[f64], g: &[f64], step: f64) -> (f64, Opt
                     }
                 }
                 if *pi == 0.0 && *gi < 0.0 {
-                    *pi = -step * gi;
+                    *pi = -readmit * gi;
                     changed = true;
                 }
                 if changed && !many {
