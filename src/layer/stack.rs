@@ -124,13 +124,37 @@ const fn series(first: usize, weighted: bool, half: bool) -> [f64; TERMS] {
     c
 }
 
-const ALPHA_M1: [f64; TERMS] = series(4, true, false);
-const BETA_MX: [f64; TERMS] = series(5, true, false);
-const GAMMA: [f64; TERMS] = series(1, false, true);
-const DELTA: [f64; TERMS] = series(3, true, false);
+/// The four series' coefficients side by side, term k in row k: (α − 1, β − x, γ, δ) as above.
+const SERIES: [[f64; 4]; TERMS] = {
+    let s = [
+        series(4, true, false),
+        series(5, true, false),
+        series(1, false, true),
+        series(3, true, false),
+    ];
+    let mut c = [[0.0; 4]; TERMS];
+    let mut k = 0;
+    while k < TERMS {
+        let mut j = 0;
+        while j < 4 {
+            c[k][j] = s[j][k];
+            j += 1;
+        }
+        k += 1;
+    }
+    c
+};
 
-fn horner(c: &[f64; TERMS], x2: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &ck| acc * x2 + ck)
+/// The four series' sums in x² (each by Horner's rule, the four side by side).
+fn horner4(x2: f64) -> [f64; 4] {
+    SERIES.iter().rev().fold([0.0; 4], |acc, ck| {
+        [
+            acc[0] * x2 + ck[0],
+            acc[1] * x2 + ck[1],
+            acc[2] * x2 + ck[2],
+            acc[3] * x2 + ck[3],
+        ]
+    })
 }
 
 fn mul(a: &M2, b: &M2) -> M2 {
@@ -307,26 +331,42 @@ impl Consts {
         2.0 * self.ku[0][0]
     }
 
-    /// exp(xA) − I and exp(−xA) − I for 0 ≤ x ≤ 1 (P − I and Q − I), from one set of series:
-    /// the odd terms change sign, each term is formed once.
-    fn propagators_minus_i(&self, x: f64) -> (M4, M4) {
+    /// The blocks of exp(xA) − I and exp(−xA) − I for 0 ≤ x ≤ 1 (P − I and Q − I), from one set
+    /// of series: the odd terms change sign, each term is formed once. A and A³ couple (Ũ, Σ)
+    /// only with (W̃, T) and A² only within each pair ([`cross`]), so an entry of P − I is
+    /// either odd (β A + δ A³, negated in Q) or even ((α − 1) I + γ A², the same in Q): the sums
+    /// of the full four-term form with its exact zeros left out.
+    fn propagators_minus_i(&self, x: f64) -> ([M2; 4], [M2; 4]) {
         let x2 = x * x;
-        let am1 = -x2 * x2 * horner(&ALPHA_M1, x2);
-        let beta = x - x2 * x2 * x * horner(&BETA_MX, x2);
-        let gamma = x2 * horner(&GAMMA, x2);
-        let delta = x2 * x * horner(&DELTA, x2);
+        let [h_a, h_b, h_g, h_d] = horner4(x2);
+        let am1 = -x2 * x2 * h_a;
+        let beta = x - x2 * x2 * x * h_b;
+        let gamma = x2 * h_g;
+        let delta = x2 * x * h_d;
         let [a1, a2, a3] = &self.powers;
         let (mut p, mut q) = ([[0.0; 4]; 4], [[0.0; 4]; 4]);
         for i in 0..4 {
             for j in 0..4 {
-                let diag = if i == j { am1 } else { 0.0 };
-                let (odd1, even, odd3) = (beta * a1[i][j], gamma * a2[i][j], delta * a3[i][j]);
-                p[i][j] = diag + odd1 + even + odd3;
-                q[i][j] = diag + -odd1 + even + -odd3;
+                if cross(i, j) {
+                    let odd = 0.0 + beta * a1[i][j] + delta * a3[i][j];
+                    p[i][j] = odd;
+                    q[i][j] = 0.0 - odd;
+                } else {
+                    let diag = if i == j { am1 } else { 0.0 };
+                    let even = diag + 0.0 + gamma * a2[i][j];
+                    p[i][j] = even;
+                    q[i][j] = even;
+                }
             }
         }
-        (p, q)
+        (blocks(&p), blocks(&q))
     }
+}
+
+/// Whether the entry (i, j) of a 4×4 matrix on (Ũ, W̃, T, Σ) couples (Ũ, Σ) with (W̃, T): A
+/// and A³ have only such entries, I and A² none.
+const fn cross(i: usize, j: usize) -> bool {
+    (i == 0 || i == 3) != (j == 0 || j == 3)
 }
 
 /// What the downward pass needs of one layer, in that layer's units.
@@ -336,8 +376,8 @@ enum Step {
         kb: M2,
         x_inv: M2,
         y: M2,
-        /// exp(xA) − I.
-        p: M4,
+        /// The blocks (uu, ut, tu, tt) of exp(xA) − I.
+        p: [M2; 4],
     },
     Thick {
         kb: M2,
@@ -844,8 +884,7 @@ fn scale_v(v: V2, s: f64) -> V2 {
 /// The thin-layer step: K̃_t from K̃_b with the propagator Q = exp(−xA), the step into `step`
 /// (written in place: a step is some hundred bytes).
 fn thin_up(c: &Consts, x: f64, kb: M2, step: &mut Step) -> M2 {
-    let (p, q) = c.propagators_minus_i(x);
-    let [quu, qut, qtu, qtt] = blocks(&q);
+    let (p, [quu, qut, qtu, qtt]) = c.propagators_minus_i(x);
     let x_m = add(&add(&qtu, &kb), &mul(&qtt, &kb));
     let y_m = add(&add(&I2, &quu), &mul(&qut, &kb));
     let kt = mul_sym(&x_m, &inv(&y_m));
@@ -909,19 +948,19 @@ fn down(step: &Step, ut: V2, t: V2) -> (V2, V2) {
             (ub, mulv(kb, ub))
         }
         Step::Thin { kb, x_inv, p, .. } => {
-            let [puu, put, ptu, ptt] = blocks(p);
+            let [puu, put, ptu, ptt] = p;
             let zero = [0.0, 0.0];
             let ub_solve = mulv_add_terms(x_inv, t, zero);
-            let (fwd, fwd_terms) = mulv_add_terms(&puu, ut, ut);
-            let (fwd2, fwd2_terms) = mulv_add_terms(&put, t, zero);
+            let (fwd, fwd_terms) = mulv_add_terms(puu, ut, ut);
+            let (fwd2, fwd2_terms) = mulv_add_terms(put, t, zero);
             let ub_fwd = (
                 [fwd[0] + fwd2[0], fwd[1] + fwd2[1]],
                 [fwd_terms[0] + fwd2_terms[0], fwd_terms[1] + fwd2_terms[1]],
             );
             let ub = pick(ub_solve, ub_fwd);
             let tb_stiff = mulv_add_terms(kb, ub, zero);
-            let (d1, d1_terms) = mulv_add_terms(&ptu, ut, t);
-            let (d2, d2_terms) = mulv_add_terms(&ptt, t, zero);
+            let (d1, d1_terms) = mulv_add_terms(ptu, ut, t);
+            let (d2, d2_terms) = mulv_add_terms(ptt, t, zero);
             let tb_fwd = (
                 [d1[0] + d2[0], d1[1] + d2[1]],
                 [d1_terms[0] + d2_terms[0], d1_terms[1] + d2_terms[1]],
