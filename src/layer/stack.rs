@@ -497,23 +497,28 @@ impl Stack {
     }
 
     /// [`Self::up`] through layers 0 … `steps.len() − 1` from the top of the base, the lowest
-    /// of them on its face `face` to the base.
-    fn up_from_face(&self, q: f64, face: &Face, steps: &mut [Step]) -> M2 {
+    /// of them on its face `face` to the base: the stiffness (Pa) at the top, none when the
+    /// lowest is the top layer and thin (its top displacement comes from its step alone).
+    fn up_from_face(&self, q: f64, face: &Face, steps: &mut [Step]) -> Option<M2> {
         let (last, above) = steps.split_last_mut().expect("a layer above the base");
         let c = &self.consts[above.len()];
         let x = q * self.layers[above.len()].thickness;
         let kt = if x <= X_THIN {
+            if above.is_empty() {
+                thin_step(c, x, face.kb, last);
+                return None;
+            }
             thin_up(c, x, face.kb, last)
         } else {
             thick_up(c, x, face, last)
         };
-        self.up(q, 0, scale(&kt, c.two_g), above)
+        Some(self.up(q, 0, scale(&kt, c.two_g), above))
     }
 
     /// The downward pass from the top, whose stiffness is `k_pa` (Pa), through the steps of
     /// every layer (`upper`, not empty, then `lower`; top first): S, and (f_k, g_k) into `out`.
     fn down(&self, k_pa: M2, upper: &[Step], lower: &[Step], out: &mut [(f64, f64)]) -> f64 {
-        let u0 = self.top_displacement(k_pa, &upper[0], [0.0, 1.0]);
+        let u0 = self.top_displacement(Some(k_pa), &upper[0], [0.0, 1.0]);
         self.interfaces_from(u0, upper, lower, out);
         self.s_of(u0)
     }
@@ -524,13 +529,17 @@ impl Stack {
     }
 
     /// The top displacement ũ(0) (in the top layer's units) under the top traction t(0) = `t0`,
-    /// from the stiffness `k_pa` (Pa) at the top and the top layer's step.
-    fn top_displacement(&self, k_pa: M2, top_step: &Step, t0: V2) -> V2 {
+    /// from the stiffness `k_pa` (Pa) at the top (needed only if the top layer is thick) and the
+    /// top layer's step.
+    fn top_displacement(&self, k_pa: Option<M2>, top_step: &Step, t0: V2) -> V2 {
         // Y X⁻¹ for a thin top layer (no inversion of the stiffness, which cancels for a thin
         // incompressible layer on a far stiffer base), K̃_1⁻¹ otherwise.
         match top_step {
             Step::Thin { x_inv, y, .. } => mulv(y, mulv(x_inv, t0)),
-            Step::Thick { .. } => mulv(&inv(&scale(&k_pa, self.consts[0].inv_two_g)), t0),
+            Step::Thick { .. } => {
+                let k_pa = k_pa.expect("a thick top layer's stiffness is formed");
+                mulv(&inv(&scale(&k_pa, self.consts[0].inv_two_g)), t0)
+            }
         }
     }
 
@@ -881,20 +890,25 @@ fn scale_v(v: V2, s: f64) -> V2 {
     [v[0] * s, v[1] * s]
 }
 
-/// The thin-layer step: K̃_t from K̃_b with the propagator Q = exp(−xA), the step into `step`
-/// (written in place: a step is some hundred bytes).
-fn thin_up(c: &Consts, x: f64, kb: M2, step: &mut Step) -> M2 {
+/// The thin-layer step with the propagator Q = exp(−xA) on the stiffness K̃_b below the layer,
+/// into `step` (written in place: a step is some hundred bytes); X and Y (K̃_t = X Y⁻¹).
+fn thin_step(c: &Consts, x: f64, kb: M2, step: &mut Step) -> (M2, M2) {
     let (p, [quu, qut, qtu, qtt]) = c.propagators_minus_i(x);
     let x_m = add(&add(&qtu, &kb), &mul(&qtt, &kb));
     let y_m = add(&add(&I2, &quu), &mul(&qut, &kb));
-    let kt = mul_sym(&x_m, &inv(&y_m));
     *step = Step::Thin {
         kb,
         x_inv: inv(&x_m),
         y: y_m,
         p,
     };
-    kt
+    (x_m, y_m)
+}
+
+/// [`thin_step`] and the stiffness K̃_t above the layer.
+fn thin_up(c: &Consts, x: f64, kb: M2, step: &mut Step) -> M2 {
+    let (x_m, y_m) = thin_step(c, x, kb, step);
+    mul_sym(&x_m, &inv(&y_m))
 }
 
 /// What a layer's step needs of the stiffness below it, in the layer's units: K̃_b, and for the
