@@ -124,13 +124,37 @@ const fn series(first: usize, weighted: bool, half: bool) -> [f64; TERMS] {
     c
 }
 
-const ALPHA_M1: [f64; TERMS] = series(4, true, false);
-const BETA_MX: [f64; TERMS] = series(5, true, false);
-const GAMMA: [f64; TERMS] = series(1, false, true);
-const DELTA: [f64; TERMS] = series(3, true, false);
+/// The four series' coefficients side by side, term k in row k: (α − 1, β − x, γ, δ) as above.
+const SERIES: [[f64; 4]; TERMS] = {
+    let s = [
+        series(4, true, false),
+        series(5, true, false),
+        series(1, false, true),
+        series(3, true, false),
+    ];
+    let mut c = [[0.0; 4]; TERMS];
+    let mut k = 0;
+    while k < TERMS {
+        let mut j = 0;
+        while j < 4 {
+            c[k][j] = s[j][k];
+            j += 1;
+        }
+        k += 1;
+    }
+    c
+};
 
-fn horner(c: &[f64; TERMS], x2: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &ck| acc * x2 + ck)
+/// The four series' sums in x² (each by Horner's rule, the four side by side).
+fn horner4(x2: f64) -> [f64; 4] {
+    SERIES.iter().rev().fold([0.0; 4], |acc, ck| {
+        [
+            acc[0] * x2 + ck[0],
+            acc[1] * x2 + ck[1],
+            acc[2] * x2 + ck[2],
+            acc[3] * x2 + ck[3],
+        ]
+    })
 }
 
 fn mul(a: &M2, b: &M2) -> M2 {
@@ -307,26 +331,42 @@ impl Consts {
         2.0 * self.ku[0][0]
     }
 
-    /// exp(xA) − I and exp(−xA) − I for 0 ≤ x ≤ 1 (P − I and Q − I), from one set of series:
-    /// the odd terms change sign, each term is formed once.
-    fn propagators_minus_i(&self, x: f64) -> (M4, M4) {
+    /// The blocks of exp(xA) − I and exp(−xA) − I for 0 ≤ x ≤ 1 (P − I and Q − I), from one set
+    /// of series: the odd terms change sign, each term is formed once. A and A³ couple (Ũ, Σ)
+    /// only with (W̃, T) and A² only within each pair ([`cross`]), so an entry of P − I is
+    /// either odd (β A + δ A³, negated in Q) or even ((α − 1) I + γ A², the same in Q): the sums
+    /// of the full four-term form with its exact zeros left out.
+    fn propagators_minus_i(&self, x: f64) -> ([M2; 4], [M2; 4]) {
         let x2 = x * x;
-        let am1 = -x2 * x2 * horner(&ALPHA_M1, x2);
-        let beta = x - x2 * x2 * x * horner(&BETA_MX, x2);
-        let gamma = x2 * horner(&GAMMA, x2);
-        let delta = x2 * x * horner(&DELTA, x2);
+        let [h_a, h_b, h_g, h_d] = horner4(x2);
+        let am1 = -x2 * x2 * h_a;
+        let beta = x - x2 * x2 * x * h_b;
+        let gamma = x2 * h_g;
+        let delta = x2 * x * h_d;
         let [a1, a2, a3] = &self.powers;
         let (mut p, mut q) = ([[0.0; 4]; 4], [[0.0; 4]; 4]);
         for i in 0..4 {
             for j in 0..4 {
-                let diag = if i == j { am1 } else { 0.0 };
-                let (odd1, even, odd3) = (beta * a1[i][j], gamma * a2[i][j], delta * a3[i][j]);
-                p[i][j] = diag + odd1 + even + odd3;
-                q[i][j] = diag + -odd1 + even + -odd3;
+                if cross(i, j) {
+                    let odd = 0.0 + beta * a1[i][j] + delta * a3[i][j];
+                    p[i][j] = odd;
+                    q[i][j] = 0.0 - odd;
+                } else {
+                    let diag = if i == j { am1 } else { 0.0 };
+                    let even = diag + 0.0 + gamma * a2[i][j];
+                    p[i][j] = even;
+                    q[i][j] = even;
+                }
             }
         }
-        (p, q)
+        (blocks(&p), blocks(&q))
     }
+}
+
+/// Whether the entry (i, j) of a 4×4 matrix on (Ũ, W̃, T, Σ) couples (Ũ, Σ) with (W̃, T): A
+/// and A³ have only such entries, I and A² none.
+const fn cross(i: usize, j: usize) -> bool {
+    (i == 0 || i == 3) != (j == 0 || j == 3)
 }
 
 /// What the downward pass needs of one layer, in that layer's units.
@@ -336,8 +376,8 @@ enum Step {
         kb: M2,
         x_inv: M2,
         y: M2,
-        /// exp(xA) − I.
-        p: M4,
+        /// The blocks (uu, ut, tu, tt) of exp(xA) − I.
+        p: [M2; 4],
     },
     Thick {
         kb: M2,
@@ -457,23 +497,28 @@ impl Stack {
     }
 
     /// [`Self::up`] through layers 0 … `steps.len() − 1` from the top of the base, the lowest
-    /// of them on its face `face` to the base.
-    fn up_from_face(&self, q: f64, face: &Face, steps: &mut [Step]) -> M2 {
+    /// of them on its face `face` to the base: the stiffness (Pa) at the top, none when the
+    /// lowest is the top layer and thin (its top displacement comes from its step alone).
+    fn up_from_face(&self, q: f64, face: &Face, steps: &mut [Step]) -> Option<M2> {
         let (last, above) = steps.split_last_mut().expect("a layer above the base");
         let c = &self.consts[above.len()];
         let x = q * self.layers[above.len()].thickness;
         let kt = if x <= X_THIN {
+            if above.is_empty() {
+                thin_step(c, x, face.kb, last);
+                return None;
+            }
             thin_up(c, x, face.kb, last)
         } else {
             thick_up(c, x, face, last)
         };
-        self.up(q, 0, scale(&kt, c.two_g), above)
+        Some(self.up(q, 0, scale(&kt, c.two_g), above))
     }
 
     /// The downward pass from the top, whose stiffness is `k_pa` (Pa), through the steps of
     /// every layer (`upper`, not empty, then `lower`; top first): S, and (f_k, g_k) into `out`.
     fn down(&self, k_pa: M2, upper: &[Step], lower: &[Step], out: &mut [(f64, f64)]) -> f64 {
-        let u0 = self.top_displacement(k_pa, &upper[0], [0.0, 1.0]);
+        let u0 = self.top_displacement(Some(k_pa), &upper[0], [0.0, 1.0]);
         self.interfaces_from(u0, upper, lower, out);
         self.s_of(u0)
     }
@@ -484,13 +529,17 @@ impl Stack {
     }
 
     /// The top displacement ũ(0) (in the top layer's units) under the top traction t(0) = `t0`,
-    /// from the stiffness `k_pa` (Pa) at the top and the top layer's step.
-    fn top_displacement(&self, k_pa: M2, top_step: &Step, t0: V2) -> V2 {
+    /// from the stiffness `k_pa` (Pa) at the top (needed only if the top layer is thick) and the
+    /// top layer's step.
+    fn top_displacement(&self, k_pa: Option<M2>, top_step: &Step, t0: V2) -> V2 {
         // Y X⁻¹ for a thin top layer (no inversion of the stiffness, which cancels for a thin
         // incompressible layer on a far stiffer base), K̃_1⁻¹ otherwise.
         match top_step {
             Step::Thin { x_inv, y, .. } => mulv(y, mulv(x_inv, t0)),
-            Step::Thick { .. } => mulv(&inv(&scale(&k_pa, self.consts[0].inv_two_g)), t0),
+            Step::Thick { .. } => {
+                let k_pa = k_pa.expect("a thick top layer's stiffness is formed");
+                mulv(&inv(&scale(&k_pa, self.consts[0].inv_two_g)), t0)
+            }
         }
     }
 
@@ -841,21 +890,25 @@ fn scale_v(v: V2, s: f64) -> V2 {
     [v[0] * s, v[1] * s]
 }
 
-/// The thin-layer step: K̃_t from K̃_b with the propagator Q = exp(−xA), the step into `step`
-/// (written in place: a step is some hundred bytes).
-fn thin_up(c: &Consts, x: f64, kb: M2, step: &mut Step) -> M2 {
-    let (p, q) = c.propagators_minus_i(x);
-    let [quu, qut, qtu, qtt] = blocks(&q);
+/// The thin-layer step with the propagator Q = exp(−xA) on the stiffness K̃_b below the layer,
+/// into `step` (written in place: a step is some hundred bytes); X and Y (K̃_t = X Y⁻¹).
+fn thin_step(c: &Consts, x: f64, kb: M2, step: &mut Step) -> (M2, M2) {
+    let (p, [quu, qut, qtu, qtt]) = c.propagators_minus_i(x);
     let x_m = add(&add(&qtu, &kb), &mul(&qtt, &kb));
     let y_m = add(&add(&I2, &quu), &mul(&qut, &kb));
-    let kt = mul_sym(&x_m, &inv(&y_m));
     *step = Step::Thin {
         kb,
         x_inv: inv(&x_m),
         y: y_m,
         p,
     };
-    kt
+    (x_m, y_m)
+}
+
+/// [`thin_step`] and the stiffness K̃_t above the layer.
+fn thin_up(c: &Consts, x: f64, kb: M2, step: &mut Step) -> M2 {
+    let (x_m, y_m) = thin_step(c, x, kb, step);
+    mul_sym(&x_m, &inv(&y_m))
 }
 
 /// What a layer's step needs of the stiffness below it, in the layer's units: K̃_b, and for the
@@ -909,19 +962,19 @@ fn down(step: &Step, ut: V2, t: V2) -> (V2, V2) {
             (ub, mulv(kb, ub))
         }
         Step::Thin { kb, x_inv, p, .. } => {
-            let [puu, put, ptu, ptt] = blocks(p);
+            let [puu, put, ptu, ptt] = p;
             let zero = [0.0, 0.0];
             let ub_solve = mulv_add_terms(x_inv, t, zero);
-            let (fwd, fwd_terms) = mulv_add_terms(&puu, ut, ut);
-            let (fwd2, fwd2_terms) = mulv_add_terms(&put, t, zero);
+            let (fwd, fwd_terms) = mulv_add_terms(puu, ut, ut);
+            let (fwd2, fwd2_terms) = mulv_add_terms(put, t, zero);
             let ub_fwd = (
                 [fwd[0] + fwd2[0], fwd[1] + fwd2[1]],
                 [fwd_terms[0] + fwd2_terms[0], fwd_terms[1] + fwd2_terms[1]],
             );
             let ub = pick(ub_solve, ub_fwd);
             let tb_stiff = mulv_add_terms(kb, ub, zero);
-            let (d1, d1_terms) = mulv_add_terms(&ptu, ut, t);
-            let (d2, d2_terms) = mulv_add_terms(&ptt, t, zero);
+            let (d1, d1_terms) = mulv_add_terms(ptu, ut, t);
+            let (d2, d2_terms) = mulv_add_terms(ptt, t, zero);
             let tb_fwd = (
                 [d1[0] + d2[0], d1[1] + d2[1]],
                 [d1_terms[0] + d2_terms[0], d1_terms[1] + d2_terms[1]],

@@ -37,7 +37,7 @@
 //! (`tests/data/stack_tangential_ref.py`) every value whose magnitude is at least 1e−30 is within
 //! [`super::STACK_RTOL`] relative, g_t,k near its zeros in absolute terms (tests/it/stack.rs).
 
-use super::{EMPTY_STEP, M2, MAX_LAYERS, Stack, Step, V2, blocks, inv, mulv, scale, scale_v};
+use super::{EMPTY_STEP, M2, MAX_LAYERS, Stack, Step, V2, inv, mulv, scale, scale_v};
 use serde::Serialize;
 
 /// g_t,k, f_t,k and h_k at one interface.
@@ -193,9 +193,9 @@ fn tracked_down(step: &Step, ut: Tracked, t: Tracked) -> (Tracked, Tracked) {
             (ub, apply(kb, ub))
         }
         Step::Thin { kb, x_inv, p, .. } => {
-            let [puu, put, ptu, ptt] = blocks(p);
-            let ub = pick_tracked(apply(x_inv, t), forward(ut, &puu, ut, &put, t));
-            let tb_fwd = forward(t, &ptu, ut, &ptt, t);
+            let [puu, put, ptu, ptt] = p;
+            let ub = pick_tracked(apply(x_inv, t), forward(ut, puu, ut, put, t));
+            let tb_fwd = forward(t, ptu, ut, ptt, t);
             (ub, pick_tracked(apply(kb, ub), tb_fwd))
         }
     }
