@@ -50,7 +50,7 @@
 use super::fft::Fft2;
 use super::{
     BemSettings, BemSolution, Convergence, InterfaceFields, Surface, check_pressure, chunked,
-    direction, measure_gap, project, solution, step_denominator, warm_pressure,
+    measure_gap, precond, project, solution, step_denominator, warm_pressure,
 };
 use crate::error::Error;
 use crate::prec::Termination;
@@ -508,10 +508,10 @@ pub fn solve_free(
         iterations += 1;
         let beta = if iterations > 1 { g2 / g_old } else { 0.0 };
         g_old = g2;
-        let (mut num, mut sum_t) = direction(&mut t, &g, &p, beta);
+        let (mut num, mut sum_t) = precond::direction(&mut t, &g, 0.0, &g, &p, beta);
         if num <= 0.0 && beta != 0.0 {
             restarts += 1;
-            (num, sum_t) = direction(&mut t, &g, &p, 0.0);
+            (num, sum_t) = precond::direction(&mut t, &g, 0.0, &g, &p, 0.0);
         }
         let tbar = sum_t / n_c;
         kernel.convolve(&mut plan, &t, &mut r, &mut pad, &mut out);

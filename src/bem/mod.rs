@@ -744,24 +744,6 @@ fn measure_gap(g: &mut [f64], u: &[f64], h: &[f64], p: &[f64]) -> (f64, f64, f64
     (g2, pen, n_c)
 }
 
-/// t ← g + β t on the contact set (0 elsewhere); returns Σ_c g·t and Σ_c t.
-fn direction(t: &mut [f64], g: &[f64], p: &[f64], beta: f64) -> (f64, f64) {
-    let parts = chunked(t, |o, tc| {
-        let (mut num, mut sum_t) = (0.0, 0.0);
-        for (ti, (gi, pi)) in tc.iter_mut().zip(g[o..].iter().zip(&p[o..])) {
-            if *pi > 0.0 {
-                *ti = gi + beta * *ti;
-                num += gi * *ti;
-                sum_t += *ti;
-            } else {
-                *ti = 0.0;
-            }
-        }
-        [num, sum_t]
-    });
-    (sum(&parts, 0), sum(&parts, 1))
-}
-
 /// Changed points (index, change) of one projection step.
 type Changes = Vec<(usize, f64)>;
 

@@ -89,7 +89,8 @@ impl Preconditioner {
     }
 }
 
-/// t ← (z − z̄) + β t on the contact set (0 elsewhere); returns Σ_c g·t and Σ_c t.
+/// t ← (z − z̄) + β t on the contact set (0 elsewhere); returns Σ_c g·t and Σ_c t. Unpreconditioned
+/// (the free-boundary solver) z = g, z̄ = 0: t ← g + β t.
 pub(super) fn direction(
     t: &mut [f64],
     z: &[f64],
