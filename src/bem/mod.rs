@@ -23,11 +23,10 @@
 //! penetrating points and rescaling to the mean pressure p0. One deviation: PK restart the
 //! conjugacy whenever points are re-admitted; here the directions stay conjugate and are reset
 //! to the gradient only when they stop being descent directions (Σ g·t ≤ 0 on the contact
-//! set). On self-affine surfaces this cuts the iterations 2–3× (82 → 45 at 512², 207 → 60 at
-//! 1024² in `examples/bench_bem.rs`' case) for the same converged answer: the stopping test
-//! below is independent of the path.
+//! set), to the preconditioned gradient. On self-affine surfaces this needs fewer iterations
+//! for the same converged answer: the stopping test below is independent of the path.
 //! The conjugate directions are preconditioned with the inverse of the influence operator on the
-//! full grid, a Fourier multiplier 1/K(q) (`precond`), which keeps the iterations from growing
+//! full grid, a Fourier multiplier 1/K(q) (`precond`), which slows the growth of the iterations
 //! with the size of the contact patches in pixels.
 //! Convergence is judged in physical units: the rms gap on the contact set and the largest
 //! penetration outside it must both be at most `gap_tol · h_rms`; the load balance is exact by
