@@ -68,7 +68,7 @@ impl Preconditioner {
             [0.0; 0]
         });
         let (m, ny) = (&self.multiplier, self.ny);
-        plan.filter_scaled(scratch, 1.0, z, |kx, col| {
+        plan.filter(scratch, z, |kx, col| {
             for (c, k) in col.iter_mut().zip(&m[kx * ny..(kx + 1) * ny]) {
                 *c *= *k;
             }
