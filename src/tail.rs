@@ -25,15 +25,24 @@
 //! K(u) = 1 − √π u erfcx(u)
 //! ```
 //!
-//! and the density of |τ| at R is R/(π sx sy) ∫_0^π e^{−Q_R/2} dθ. Both terms of J are positive;
-//! K, which vanishes like 1/(2u²), is taken from Laplace's continued fraction for erfcx
-//! (√π erfcx(u) = 1/(u + r), K = r/(u + r)) for u ≥ 2, so no digits cancel; for u < 0 the
+//! and the density of |τ| at R is R/(π sx sy) ∫_0^π e^{−Q_R/2} dθ. Since K = 1 − √π u erfcx(u)
+//! and Ra − g = mα cos θ (α = 1/sx²), J·a = 1 + t·erfcx(u) with t = √(π/(2a))·mα cos θ: a sum
+//! of two non-negative terms where cos θ ≥ 0, and one losing at most a bit elsewhere as long as
+//! R ≥ m and sy ≤ sx (then t·erfcx(u) ≥ −(1 − K)·m/(R + m) > −½); where that fails, J is
+//! taken as R√(π/(2a)) erfcx(u) + K/a, with K from Laplace's continued fraction for erfcx
+//! (√π erfcx(u) = 1/(u + r), K = r/(u + r)) for u ≥ 2, so no digits cancel. For u < 0 the
 //! factor e^{u²} is moved into the exponent. Q_R is quadratic in cos θ, so its minima over θ
-//! (θ = 0 or the vertex, and θ = π) are known in closed form; the θ-integral is split into panels
-//! growing geometrically from each minimum in units of the peak's width √(2/Q_θθ), and each panel
-//! is bisected until 10- and 20-point Gauss–Legendre agree to 1e−14 of the total (their
-//! difference summed is the error estimate). The integrand is scaled by its value at the peak
-//! before exponentiation, so ε = 1e−300 and far below are computed like ε = 0.1.
+//! (θ = 0 or the vertex, and θ = π) are known in closed form; the θ-integral is split into
+//! panels growing geometrically from each minimum in units of the peak's width √(2/Q_θθ), on
+//! [π/2, π] in the distance π − θ (so that the nodes near θ = π carry no rounding of π), and
+//! each panel is bisected until the 21-point Gauss–Kronrod rule and its embedded 10-point
+//! Gauss rule agree to 1e−14 of the total (their difference summed is the error estimate). A
+//! panel on which no ray's Gaussian factor has an interior maximum in θ (always when sy ≤ sx)
+//! has integrals at most its width times the sum of the integrands at its ends; panels so
+//! bounded are left out, largest bound first, while all those left out stay below a tenth of
+//! the tolerance, and their bounds join the error estimate. The integrands are scaled by their
+//! exponent at the peak before exponentiation, so ε = 1e−300 and far below are computed like
+//! ε = 0.1.
 //!
 //! Degenerate cases in closed form: sy = 0 (or sy < 1e−20 sx, which moves τ* by less than
 //! 1e−40 relative) is the folded normal; sx = 0 likewise gives P = erfc(√(R² − m²)/(√2 sy));
@@ -41,9 +50,9 @@
 
 use crate::error::Error;
 use crate::prec::{EPS, Estimate, Termination};
-use crate::quad::gauss_legendre;
 use std::f64::consts::PI;
-use std::sync::OnceLock;
+
+mod erfcx_far;
 
 /// Relative tolerance of the θ-integral (the error estimate is reported, not this).
 const QUAD_RTOL: f64 = 1e-14;
@@ -354,10 +363,68 @@ fn across_only(m: f64, sy: f64, r: f64) -> LnExceedance {
     }
 }
 
-fn rules() -> &'static [(Vec<f64>, Vec<f64>); 2] {
-    static R: OnceLock<[(Vec<f64>, Vec<f64>); 2]> = OnceLock::new();
-    R.get_or_init(|| [gauss_legendre(10), gauss_legendre(20)])
+/// erfcx(u) = e^{u²} erfc(u) for u ≥ 0, to a few ulp: below u = 1.25 libm's erfc times
+/// e^{u²}, with u² split exactly into hi + lo (Dekker's product) as e^{hi}(1 + lo), so that the
+/// rounding of u² does not enter; from 1.25 to 26 the same approximation as libm's erfc with
+/// e^{−u²} left out ([`erfcx_far::erfcx_far`], one exponential instead of three); above,
+/// Laplace's continued fraction ([`erfcx_and_k`]).
+fn erfcx(u: f64) -> f64 {
+    if u >= 26.0 {
+        return erfcx_and_k(u).0;
+    }
+    if u >= 1.25 {
+        return erfcx_far::erfcx_far(u);
+    }
+    let hi = u * u;
+    // Veltkamp's split of u into 26-bit halves, so that the partial products are exact.
+    let c = 134_217_729.0 * u;
+    let uh = c - (c - u);
+    let ul = u - uh;
+    let lo = ((uh * uh - hi) + 2.0 * uh * ul) + ul * ul;
+    libm::erfc(u) * (hi.exp() * (1.0 + lo))
 }
+
+/// The 21-point Gauss–Kronrod rule on [−1, 1] and its embedded 10-point Gauss rule
+/// (QUADPACK's qk21; test `kronrod_21_is_exact_to_degree_31_and_embeds_gauss_10`): the
+/// non-negative nodes, descending, with the Kronrod weights, and the Gauss weights of the odd
+/// ones (the Gauss nodes).
+const KRONROD_21_NODES: [f64; 11] = [
+    0.995_657_163_025_808_1,
+    0.973_906_528_517_171_7,
+    0.930_157_491_355_708_2,
+    0.865_063_366_688_984_5,
+    0.780_817_726_586_416_9,
+    0.679_409_568_299_024_4,
+    0.562_757_134_668_604_7,
+    0.433_395_394_129_247_2,
+    0.294_392_862_701_460_2,
+    0.148_874_338_981_631_22,
+    0.0,
+];
+const KRONROD_21_WEIGHTS: [f64; 11] = [
+    0.011_694_638_867_371_874,
+    0.032_558_162_307_964_725,
+    0.054_755_896_574_351_995,
+    0.075_039_674_810_919_96,
+    0.093_125_454_583_697_6,
+    0.109_387_158_802_297_64,
+    0.123_491_976_262_065_84,
+    0.134_709_217_311_473_34,
+    0.142_775_938_577_060_09,
+    0.147_739_104_901_338_49,
+    0.149_445_554_002_916_9,
+];
+const GAUSS_10_WEIGHTS: [f64; 5] = [
+    0.066_671_344_308_688_14,
+    0.149_451_349_150_580_6,
+    0.219_086_362_515_982_04,
+    0.269_266_719_309_996_35,
+    0.295_524_224_714_752_87,
+];
+
+/// Panels whose integrals are bounded (from the values at their ends) by at most this fraction
+/// of the θ-integral's tolerance, all together, are left out and their bound added to the error.
+const SKIP_SHARE: f64 = 0.1;
 
 /// The scaled problem (max(sx, sy) = 1): the two θ-integrands and their peak.
 struct Polar {
@@ -365,45 +432,141 @@ struct Polar {
     alpha: f64,
     beta: f64,
     r: f64,
-    /// ln of the P-integrand and −Q_R/2 at the peak, subtracted before exponentiating.
-    ref_p: f64,
+    /// −Q_R/2 at the peak, subtracted from the density integrand's exponent.
     ref_f: f64,
+    /// The P-integrand's exponent at the peak (−Q_R/2, plus u² where u < 0), subtracted from
+    /// its exponent.
+    ref_p: f64,
+    /// e^{ref_f − ref_p}: the P-integrand's scale where its exponent is −Q_R/2.
+    scale: f64,
+}
+
+/// The factors of the P-integrand at one θ: e^{exponent} · ja/a with exponent = −Q_R/2 (the
+/// density integrand's), plus u² where u < 0 (`fold`).
+struct Terms {
+    neg_half_q: f64,
+    fold: Option<f64>,
+    ja: f64,
+    a: f64,
 }
 
 impl Polar {
-    /// (ln of e^{−Q_R/2} J, −Q_R/2) at θ.
-    fn ln_integrands(&self, theta: f64) -> (f64, f64) {
-        let (s, c) = theta.sin_cos();
+    fn new(m: f64, alpha: f64, beta: f64, r: f64, theta_peak: f64) -> Self {
+        let mut pol = Self {
+            m,
+            alpha,
+            beta,
+            r,
+            ref_f: 0.0,
+            ref_p: 0.0,
+            scale: 1.0,
+        };
+        let t = if theta_peak == PI {
+            pol.terms(0.0, Half::Upper)
+        } else {
+            pol.terms(theta_peak, Half::Lower)
+        };
+        pol.ref_f = t.neg_half_q;
+        pol.ref_p = t.neg_half_q + t.fold.unwrap_or(0.0);
+        pol.scale = (pol.ref_f - pol.ref_p).exp();
+        pol
+    }
+
+    /// The P-integrand's factors at θ (module docs): J·a = 1 + t·erfcx(u) with
+    /// t = √(π/(2a))·mα cos θ, both terms ≥ 0 where cos θ ≥ 0; where cos θ < 0 and t·erfcx(u) <
+    /// −½ (which needs R < m or sy > sx) the sum would cancel, and instead
+    /// J·a = R a √(π/(2a)) erfcx(u) + K(u). For u < 0 (then cos θ > 0) e^{u²} moves into the exponent:
+    /// J·a e^{−u²} = e^{−u²} + t·erfc(u).
+    fn terms(&self, t: f64, half: Half) -> Terms {
+        let (s, c) = t.sin_cos();
+        let c = if half == Half::Upper { -c } else { c };
         let (al, be, r, m) = (self.alpha, self.beta, self.r, self.m);
         let a = al * c * c + be * s * s;
         let dx = r * c - m;
-        let half_q = 0.5 * (al * dx * dx + be * r * r * s * s);
+        let neg_half_q = -0.5 * (al * dx * dx + be * r * r * s * s);
         let g = r * a - al * m * c;
         let sa = (2.0 * a).sqrt();
         let u = g / sa;
-        let k = (PI / (2.0 * a)).sqrt();
-        let ln_p = if u >= 0.0 {
-            let (ex, kk) = erfcx_and_k(u);
-            -half_q + (r * k * ex + kk / a).ln()
-        } else {
+        let k = PI.sqrt() / sa;
+        let t = k * al * m * c;
+        if u < 0.0 {
             let ec = libm::erfc(u);
-            -half_q + u * u + (r * k * ec + ((-u * u).exp() - PI.sqrt() * u * ec) / a).ln()
+            return Terms {
+                neg_half_q,
+                fold: Some(u * u),
+                ja: (-u * u).exp() + t * ec,
+                a,
+            };
+        }
+        let ex = erfcx(u);
+        let ja = if t * ex >= -0.5 {
+            1.0 + t * ex
+        } else {
+            let (ex, kk) = erfcx_and_k(u);
+            r * a * k * ex + kk
         };
-        (ln_p, -half_q)
+        Terms {
+            neg_half_q,
+            fold: None,
+            ja,
+            a,
+        }
     }
 
-    /// ∫ over [a, b] of both scaled integrands by 10- and 20-point Gauss–Legendre.
-    fn panel(&self, a: f64, b: f64) -> [[f64; 2]; 2] {
+    /// The P-integrand e^{−Q_R/2} J and the density integrand e^{−Q_R/2} at θ, scaled by their
+    /// values' exponents at the peak; θ = t on the lower half, π − t on the upper.
+    fn integrands(&self, t: f64, half: Half) -> [f64; 2] {
+        let t = self.terms(t, half);
+        let f = (t.neg_half_q - self.ref_f).exp();
+        let p = match t.fold {
+            None => f * self.scale,
+            Some(u2) => (t.neg_half_q + u2 - self.ref_p).exp(),
+        };
+        [p * t.ja / t.a, f]
+    }
+
+    /// ∫ over [a, b] of both scaled integrands by the 10-point Gauss rule ([0]) and the
+    /// 21-point Kronrod rule through its nodes ([1]), in θ or in π − θ as `half` says.
+    fn panel(&self, a: f64, b: f64, which: Half) -> [[f64; 2]; 2] {
         let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
         let mut out = [[0.0; 2]; 2];
-        for (k, (x, w)) in rules().iter().enumerate() {
-            for (xi, wi) in x.iter().zip(w) {
-                let (lp, lf) = self.ln_integrands(mid + half * xi);
-                out[k][0] += wi * half * (lp - self.ref_p).exp();
-                out[k][1] += wi * half * (lf - self.ref_f).exp();
+        for (i, (&x, &wk)) in KRONROD_21_NODES.iter().zip(&KRONROD_21_WEIGHTS).enumerate() {
+            let wg = if i % 2 == 1 {
+                GAUSS_10_WEIGHTS[i / 2]
+            } else {
+                0.0
+            };
+            let v = if x == 0.0 {
+                self.integrands(mid, which)
+            } else {
+                let (lo, hi) = (
+                    self.integrands(mid - half * x, which),
+                    self.integrands(mid + half * x, which),
+                );
+                [lo[0] + hi[0], lo[1] + hi[1]]
+            };
+            for j in 0..2 {
+                out[0][j] += wg * half * v[j];
+                out[1][j] += wk * half * v[j];
             }
         }
         out
+    }
+
+    /// Whether on a panel [t1, t2] no ray's Gaussian factor e^{−Q(ρ, θ)/2} (ρ ≥ R) has an interior
+    /// local maximum in θ, so that each is at most the larger of its values at the ends and
+    /// each integrand's integral over [t1, t2] at most (t2 − t1) times the sum of its values
+    /// there. Q(ρ, θ) = ρ²(α − β)cos²θ − 2ρmα cos θ + const: with α ≤ β (sy ≤ sx) it is concave
+    /// in cos θ, so it always holds; else Q's minimum over cos θ is at mα/(ρ(α − β)), which
+    /// for ρ ≥ R lies in (0, mα/(R(α − β))] (at 0 for m = 0), θ ∈ (0, π/2], and [t1, t2] (on
+    /// the lower half) must avoid those θ.
+    fn bounded_by_ends(&self, t2: f64, half: Half) -> bool {
+        let (al, be) = (self.alpha, self.beta);
+        if al <= be || half == Half::Upper {
+            return true;
+        }
+        let c_max = self.m * al / (self.r * (al - be));
+        t2 <= c_max.min(1.0).acos()
     }
 }
 
@@ -434,47 +597,106 @@ fn peaks_of(m: f64, alpha: f64, beta: f64, r: f64) -> Vec<(f64, f64)> {
     out
 }
 
+/// Breakpoints θ ± w·2^k (k = −1, 0, 1, …) around each peak (θ, w), with 0, π/2 and the peaks:
+/// those in [0, π/2] as θ, and those in [π/2, π] as their distance π − θ from π ([`Half`]),
+/// each half sorted.
+fn cuts_around(peaks: &[(f64, f64)]) -> [Vec<f64>; 2] {
+    let half_pi = 0.5 * PI;
+    let mut cuts = [vec![0.0, half_pi], vec![0.0, half_pi]];
+    let push = |cuts: &mut [Vec<f64>; 2], t: f64, from_pi: f64| {
+        if t > 0.0 && t < half_pi {
+            cuts[0].push(t);
+        } else if from_pi > 0.0 && from_pi < half_pi {
+            cuts[1].push(from_pi);
+        }
+    };
+    for &(theta, w) in peaks {
+        let mut d = 0.5 * w;
+        while d < PI {
+            if theta == PI {
+                push(&mut cuts, PI - d, d);
+            } else {
+                push(&mut cuts, theta - d, PI - (theta - d));
+                push(&mut cuts, theta + d, PI - (theta + d));
+            }
+            d *= 2.0;
+        }
+        if theta < half_pi {
+            cuts[0].push(theta);
+        }
+    }
+    for c in &mut cuts {
+        c.sort_by(f64::total_cmp);
+        c.dedup();
+    }
+    cuts
+}
+
+/// Which half of [0, π] a θ-panel lies in: the upper half is parametrised by the distance
+/// φ = π − θ from π, so that near θ = π, where the integrands vary on the scale of sin θ, the
+/// nodes carry no rounding of π.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Half {
+    Lower,
+    Upper,
+}
+
+/// A θ-panel [a, b] (in φ = π − θ on the upper half) with its Gauss and Kronrod integrals and
+/// its bisection depth.
+type Panel = (f64, f64, Half, u32, [[f64; 2]; 2]);
+
+/// The first panels of the θ-integral, between the cuts of each half, with the bound on the
+/// integrals of the panels left out. A panel whose integrals are bounded by its end values
+/// ([`Polar::bounded_by_ends`]) is left out when, largest bound first, the bounds of all panels
+/// left out stay below [`SKIP_SHARE`] of `rtol` times the integrals of those computed.
+fn first_panels(pol: &Polar, cuts: &[Vec<f64>; 2], rtol: f64) -> (Vec<Panel>, [f64; 2]) {
+    let mut order = Vec::with_capacity(cuts[0].len() + cuts[1].len());
+    for (half, c) in [Half::Lower, Half::Upper].into_iter().zip(cuts) {
+        let at: Vec<[f64; 2]> = c.iter().map(|&t| pol.integrands(t, half)).collect();
+        for i in 0..c.len() - 1 {
+            let (t1, t2) = (c[i], c[i + 1]);
+            let bound = if pol.bounded_by_ends(t2, half) {
+                [0, 1].map(|j| (t2 - t1) * (at[i][j] + at[i + 1][j]))
+            } else {
+                [f64::INFINITY; 2]
+            };
+            order.push((t1, t2, half, bound));
+        }
+    }
+    order.sort_by(|x, y| y.3[0].total_cmp(&x.3[0]));
+    // The bound of every panel from the k-th on in this order.
+    let mut rest = vec![[0.0; 2]; order.len() + 1];
+    for k in (0..order.len()).rev() {
+        rest[k] = [0, 1].map(|j| rest[k + 1][j] + order[k].3[j]);
+    }
+    // Room for the bisections `polar` pushes onto these panels, its stack (each bisection
+    // replaces one panel by two), so that it seldom grows.
+    let mut panels = Vec::with_capacity(2 * order.len());
+    let mut total = [0.0; 2];
+    for (k, &(t1, t2, half, _)) in order.iter().enumerate() {
+        if (0..2).all(|j| rest[k][j] <= SKIP_SHARE * rtol * total[j]) {
+            return (panels, rest[k]);
+        }
+        let p = pol.panel(t1, t2, half);
+        for j in 0..2 {
+            total[j] += p[1][j];
+        }
+        panels.push((t1, t2, half, 0, p));
+    }
+    (panels, [0.0; 2])
+}
+
 /// The general case, scaled so that max(sx, sy) = 1.
 fn polar(m: f64, sx: f64, sy: f64, r: f64, rtol: f64) -> LnExceedance {
     let (alpha, beta) = (1.0 / (sx * sx), 1.0 / (sy * sy));
     let peaks = peaks_of(m, alpha, beta, r);
-    let theta_p = peaks[0].0;
-    let mut pol = Polar {
-        m,
-        alpha,
-        beta,
-        r,
-        ref_p: 0.0,
-        ref_f: 0.0,
-    };
-    let (lp, lf) = pol.ln_integrands(theta_p);
-    pol.ref_p = lp;
-    pol.ref_f = lf;
-    // Breakpoints θ ± w·2^k (k = −1..) around each peak, clipped to [0, π].
-    let mut cuts = vec![0.0, PI];
-    for &(theta, w) in &peaks {
-        cuts.push(theta);
-        let mut d = 0.5 * w;
-        while d < PI {
-            for t in [theta - d, theta + d] {
-                if t > 0.0 && t < PI {
-                    cuts.push(t);
-                }
-            }
-            d *= 2.0;
-        }
-    }
-    cuts.sort_by(f64::total_cmp);
-    cuts.dedup();
-    let mut stack: Vec<(f64, f64, u32, [[f64; 2]; 2])> = cuts
-        .windows(2)
-        .map(|c| (c[0], c[1], 0, pol.panel(c[0], c[1])))
-        .collect();
+    let pol = Polar::new(m, alpha, beta, r, peaks[0].0);
+    let (mut stack, left_out) = first_panels(&pol, &cuts_around(&peaks), rtol);
     // The panels around the peak set the scale against which the others are judged.
-    let total: [f64; 2] = [0, 1].map(|j| stack.iter().map(|p| p.3[1][j]).sum());
-    let (mut sum, mut err) = ([0.0; 2], [0.0; 2]);
+    let total: [f64; 2] = [0, 1].map(|j| stack.iter().map(|p| p.4[1][j]).sum());
+    let (mut sum, mut err) = ([0.0; 2], left_out);
     let mut status = Termination::Converged;
-    while let Some((a, b, depth, p)) = stack.pop() {
+    while let Some((a, b, half, depth, p)) = stack.pop() {
         let diff = [0, 1].map(|j| (p[1][j] - p[0][j]).abs());
         if (0..2).all(|j| diff[j] <= rtol * total[j]) || depth >= MAX_DEPTH {
             if depth >= MAX_DEPTH {
@@ -486,19 +708,98 @@ fn polar(m: f64, sx: f64, sy: f64, r: f64, rtol: f64) -> LnExceedance {
             }
         } else {
             let c = 0.5 * (a + b);
-            stack.push((a, c, depth + 1, pol.panel(a, c)));
-            stack.push((c, b, depth + 1, pol.panel(c, b)));
+            stack.push((a, c, half, depth + 1, pol.panel(a, c, half)));
+            stack.push((c, b, half, depth + 1, pol.panel(c, b, half)));
         }
     }
     let norm = -(PI * sx * sy).ln();
     let ln_p = norm + pol.ref_p + sum[0].ln();
     let ln_f = norm + r.ln() + pol.ref_f + sum[1].ln();
-    // Rounding: the exponent (up to ~|ln P|) to a few ulp, and J's erfcx and K (K loses up to a
-    // digit below u = 2) to ~1e-15 each; the sum over the nodes was measured off the 30-digit
-    // reference by up to 1.2e-14 for sy/sx = 1e-3, so 2e-14 is allowed.
+    // Rounding: the exponent (up to ~|ln P|) to a few ulp, and J (erfcx to a few ulp, J·a a
+    // sum of two non-negative terms or one losing at most a bit) to ~1e-15; the sum over the
+    // nodes was measured off the 30-digit reference by up to 1.2e-14 for sy/sx = 1e-3, so
+    // 2e-14 is allowed.
     let rel = err[0] / sum[0] + 2e-14 + 8.0 * EPS * pol.ref_p.abs();
     LnExceedance {
         ln_p: Estimate::new(ln_p, rel, status),
         slope: -(ln_f - ln_p).exp(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The tabulated Kronrod rule integrates x^k over [−1, 1] exactly (2/(k + 1) for even k)
+    /// to degree 31 and its embedded Gauss rule to degree 19, both to 4e−16, and no further;
+    /// the Gauss nodes and weights are those of `quad::gauss_legendre(10)` to 2e−16 and 1e−15
+    /// (its weights are good to a few ulp). A wrong digit in any constant breaks one of these.
+    #[test]
+    fn kronrod_21_is_exact_to_degree_31_and_embeds_gauss_10() {
+        let integral = |k: i32, gauss: bool| {
+            let mut sum = 0.0;
+            for (i, (&x, &wk)) in KRONROD_21_NODES.iter().zip(&KRONROD_21_WEIGHTS).enumerate() {
+                let w = match gauss {
+                    true if i % 2 == 1 => GAUSS_10_WEIGHTS[i / 2],
+                    true => 0.0,
+                    false => wk,
+                };
+                let f = if x == 0.0 {
+                    f64::from(u8::from(k == 0))
+                } else {
+                    x.powi(k) + (-x).powi(k)
+                };
+                sum += w * f;
+            }
+            sum
+        };
+        for k in 0..=31 {
+            let want = if k % 2 == 0 {
+                2.0 / f64::from(k + 1)
+            } else {
+                0.0
+            };
+            assert!((integral(k, false) - want).abs() < 4e-16, "Kronrod x^{k}");
+            if k <= 19 {
+                assert!((integral(k, true) - want).abs() < 4e-16, "Gauss x^{k}");
+            }
+        }
+        assert!((integral(32, false) - 2.0 / 33.0).abs() > 1e-12);
+        assert!((integral(20, true) - 2.0 / 21.0).abs() > 1e-8);
+        let (x, w) = crate::quad::gauss_legendre(10);
+        for i in 0..5 {
+            assert!((x[9 - i] - KRONROD_21_NODES[2 * i + 1]).abs() < 2e-16);
+            assert!((w[9 - i] - GAUSS_10_WEIGHTS[i]).abs() < 1e-15);
+        }
+    }
+
+    /// erfcx against 40-digit values (mpmath: erfc(u)·e^{u²}) on both sides of the switches
+    /// to the one-exponential form at u = 1.25, between its two ranges at 1/0.35 and to the
+    /// continued fraction at u = 26 (and at 1.794135…, the largest error of the one-exponential
+    /// form on 8000 points of [1.25, 26], 2.7e−16): to 4e−16 relative.
+    #[test]
+    fn erfcx_matches_high_precision() {
+        for (u, want) in [
+            (0.0, 1.0),
+            (0.3, 0.7345993345676551),
+            (1.249_999_999_999_999_8, 0.367_822_916_452_361_15),
+            (1.25, 0.3678229164523611),
+            (1.5, 0.3215854164543175),
+            (1.794_135_453_615_805_6, 0.2792982760539694),
+            (2.857, 0.1871148342026104),
+            (2.8572, 0.1871029939203215),
+            (5.0, 0.11070463773306863),
+            (17.3, 0.03255790299363966),
+            (2.0, 0.25539567631050575),
+            (3.5, 0.1552936556088943),
+            (10.0, 0.05614099274382259),
+            (25.9, 0.02176718115073821),
+            (26.0, 0.021683584850562907),
+            (30.0, 0.01879588886141675),
+            (100.0, 0.005641613782989433),
+        ] {
+            let e = erfcx(u);
+            assert!((e / want - 1.0).abs() < 4e-16, "erfcx({u}) = {e} vs {want}");
+        }
     }
 }

@@ -523,7 +523,7 @@ pub fn solve_free(
             tbar,
             iterations,
         )?;
-        let (total, _) = project(&mut p, 1.0, &t, &g, num / den);
+        let (total, _) = project(&mut p, 1.0, &t, &g, num / den, num / den);
         let scale = p0 * n as f64 / total;
         chunked(&mut p, |_, pc| {
             pc.iter_mut().for_each(|pi| *pi *= scale);

@@ -5,8 +5,9 @@
 //! bound by those streams, not by arithmetic. Its element-wise steps are therefore done row by
 //! row inside the passes that already read or write the fields: the gap's statistics where the
 //! displacement is formed (the inverse row pass of its convolution, or the incremental update),
-//! the new direction in the forward row pass of its own convolution, and the step's denominator
-//! in that convolution's inverse row pass.
+//! the masked gap in the forward row pass of the preconditioner's convolution and its products
+//! in that convolution's inverse row pass (`precond`), the new direction in the forward row pass
+//! of its own convolution, and the step's denominator in that convolution's inverse row pass.
 //!
 //! Conventions: `graw = u − h` is stored; the gap is g = graw − ḡ with ḡ the mean of graw on the
 //! contact set (`contact[i]` ⇔ p_i > 0), applied where g is read. Sums are formed per grid row
@@ -95,18 +96,20 @@ impl GapSums {
     }
 }
 
-/// t ← g + β t on the row's contact points (0 elsewhere), g = graw − ḡ; returns [Σ t].
+/// t ← (v − v̄) + β t on the row's contact points (0 elsewhere): v is the preconditioned gap z
+/// with its contact-set mean v̄ = z̄ in the solver (and graw with ḡ, i.e. the gap, unpreconditioned);
+/// returns [Σ t].
 pub(super) fn direction_row(
     t: &mut [f64],
-    graw: &[f64],
+    v: &[f64],
     contact: &[bool],
-    gbar: f64,
+    vbar: f64,
     beta: f64,
 ) -> [f64; 1] {
     let mut sum_t = 0.0;
-    for ((ti, g), c) in t.iter_mut().zip(graw).zip(contact) {
+    for ((ti, vi), c) in t.iter_mut().zip(v).zip(contact) {
         if *c {
-            *ti = (g - gbar) + beta * *ti;
+            *ti = (vi - vbar) + beta * *ti;
             sum_t += *ti;
         } else {
             *ti = 0.0;
@@ -127,13 +130,13 @@ pub(super) fn denominator_row(r: &[f64], t: &[f64], contact: &[bool], tbar: f64)
 }
 
 /// p ← ps·p − step·t on the contact set, projected to p ≥ 0, with penetrating points
-/// (g = graw − ḡ < 0) re-admitted at −step·g, and `contact` (if given) set to p > 0; returns
+/// (g = graw − ḡ < 0) re-admitted at −readmit·g, and `contact` (if given) set to p > 0; returns
 /// Σ p and, if there are at most [`SPARSE_MAX`], the points clamped or re-admitted with their
 /// change beyond the linear update ps·p − step·t (t is 0 off the contact set), in index order.
 pub(super) fn project(
     p: &mut [f64],
     contact: Option<&mut [bool]>,
-    (ps, step): (f64, f64),
+    (ps, step, readmit): (f64, f64, f64),
     t: &[f64],
     graw: &[f64],
     gbar: f64,
@@ -165,7 +168,7 @@ pub(super) fn project(
                 }
                 let gi = gr - gbar;
                 if *pi == 0.0 && gi < 0.0 {
-                    *pi = -step * gi;
+                    *pi = -readmit * gi;
                     changed = true;
                 }
                 if changed && !many {
@@ -239,14 +242,15 @@ where
     GapSums::of(&rows)
 }
 
-/// The new direction t ← g + β t (on the contact set, 0 elsewhere) formed in the forward row
-/// pass of r = K t, and the step's denominator Σ_c r (t − t̄) in its inverse row pass.
+/// The new direction t ← (z − z̄) + β t (on the contact set of `n_c` points, 0 elsewhere; z the
+/// preconditioned gap) formed in the forward row pass of r = K t, and the step's denominator
+/// Σ_c r (t − t̄) in its inverse row pass.
 pub(super) fn conjugate<M>(
     plan: &mut Fft2,
     (t, r): (&mut [f64], &mut [f64]),
     multiply: M,
-    (graw, contact): (&[f64], &[bool]),
-    sums: GapSums,
+    (z, zbar, contact): (&[f64], f64, &[bool]),
+    n_c: f64,
     beta: f64,
 ) -> f64
 where
@@ -257,12 +261,12 @@ where
         t,
         |y, trow| {
             let o = y * nx;
-            direction_row(trow, &graw[o..o + nx], &contact[o..o + nx], sums.gbar, beta)
+            direction_row(trow, &z[o..o + nx], &contact[o..o + nx], zbar, beta)
         },
         r,
         multiply,
         |[sum_t]| {
-            let tbar = sum_t / sums.n_c;
+            let tbar = sum_t / n_c;
             move |y, trow, rrow| denominator_row(rrow, trow, &contact[y * nx..(y + 1) * nx], tbar)
         },
     );
@@ -359,13 +363,14 @@ mod tests {
         // The projection with the gap as graw − ḡ and the contact flags written.
         let step = 0.9;
         let mut p_unfused = p.clone();
-        let (total, changes) = crate::bem::project(&mut p_unfused, 1.3, &t_unfused, &g, step);
+        let (total, changes) =
+            crate::bem::project(&mut p_unfused, 1.3, &t_unfused, &g, step, 0.6 * step);
         let mut p_fused = p.clone();
         let mut flags = vec![false; nx * ny];
         let (total_fused, changes_fused) = project(
             &mut p_fused,
             Some(&mut flags),
-            (1.3, step),
+            (1.3, step, 0.6 * step),
             &t_unfused,
             &graw,
             sums.gbar,

@@ -185,18 +185,19 @@ impl Engine {
 
     /// Evaluate at one stack (thickness) and nominal pressure p0 (Pa).
     pub fn evaluate(&self, stack: &Stack, p0: f64, request: Request) -> Result<Contact, Error> {
-        self.evaluate_mixed(stack, p0, request, Mix::Static)
+        Ok(self.evaluate_mixed(stack, p0, request, Mix::Static)?.0)
     }
 
     /// [`Self::evaluate`] with the interface integrals' kernels chosen by `mix` (its σ and τ
-    /// slots are returned as `sigma_rms_interface` and `tau_rms_interface`).
+    /// slots are returned as `sigma_rms_interface` and `tau_rms_interface`), and under
+    /// [`Mix::Sliding`] with τ requested the friction slots' rms ([`Self::refine`]).
     pub(super) fn evaluate_mixed(
         &self,
         stack: &Stack,
         p0: f64,
         request: Request,
         mix: Mix,
-    ) -> Result<Contact, Error> {
+    ) -> Result<(Contact, Option<[Estimate; 2]>), Error> {
         if !(p0.is_finite() && p0 > 0.0) {
             return Err(Error::invalid(
                 "nominal pressure p0",
@@ -230,19 +231,31 @@ impl Engine {
     }
 
     /// The evaluation with `kernels`, on grids refined until the estimates meet rtol (at most
-    /// [`MAX_REFINE`] times).
+    /// [`MAX_REFINE`] times). Under [`Mix::Sliding`] with τ requested, also the friction slots'
+    /// rms (along x, along y), evaluated with the others (the same G, P and nodes): each of the
+    /// two groups, the requested quantities and the friction slots with G1 and A, is taken from
+    /// the first grid on which it meets rtol, and only a group that has not is evaluated on the
+    /// next. The kernel evaluations counted are those of every grid evaluated.
     pub(super) fn refine(
         &self,
         kernels: &Kernels,
         at: At,
         request: Request,
-    ) -> Result<Contact, Error> {
-        let mut evaluations = 0;
-        let mut interface = 0;
-        let mut last = None;
+    ) -> Result<(Contact, Option<[Estimate; 2]>), Error> {
+        let rtol = self.settings.rtol;
+        let floor = rounding_floor(at.kernel_rtol);
+        let friction = kernels.sliding() && request.tau_interface;
+        let (mut evaluations, mut interface) = (0, 0);
+        let (mut main, mut slots): (Option<Contact>, Option<Contact>) = (None, None);
+        let (mut main_done, mut slots_done) = (false, !friction);
         for level in 0..=MAX_REFINE {
             let grid = self.grid(level)?;
-            let graded = match request.interface() {
+            let req = if main_done {
+                Request::default()
+            } else {
+                request
+            };
+            let graded = match req.interface() || !slots_done {
                 true => Some(self.graded(level)?),
                 false => None,
             };
@@ -254,25 +267,49 @@ impl Engine {
                 depth: at.depth,
                 e_top: at.e_top,
                 p0: at.p0,
-                req: request,
-                rtol: self.settings.rtol,
+                req,
+                friction: !slots_done,
+                rtol,
             };
-            let mut c = SCRATCH.with_borrow_mut(|s| evaluate_on(&point, evaluations, s))?;
+            let (mut c, pair) = SCRATCH.with_borrow_mut(|s| evaluate_on(&point, evaluations, s))?;
             interface += c.interface_kernel_evaluations;
-            c.interface_kernel_evaluations = interface;
             evaluations = c.kernel_evaluations;
-            add_rounding_floor(&mut c, rounding_floor(at.kernel_rtol));
-            let done = converged(&c, self.settings.rtol);
-            last = Some(c);
-            if done {
+            if let Some([fx, fy]) = pair {
+                // The friction slots as a contact of their own, in the σ and τ slots.
+                let mut f = Contact {
+                    sigma_rms_top: None,
+                    e_eff_over_e_film: None,
+                    sigma_rms_interface: Some(fx),
+                    tau_rms_interface: Some(fy),
+                    ..c.clone()
+                };
+                add_rounding_floor(&mut f, floor);
+                slots_done = converged(&f, rtol);
+                slots = Some(f);
+            }
+            if !main_done {
+                add_rounding_floor(&mut c, floor);
+                main_done = converged(&c, rtol);
+                main = Some(c);
+            }
+            if main_done && slots_done {
                 break;
             }
         }
-        let mut c = last.expect("at least one grid level");
-        if !converged(&c, self.settings.rtol) {
-            mark_not_reached(&mut c, self.settings.rtol);
+        let mut c = main.expect("at least one grid level");
+        c.kernel_evaluations = evaluations;
+        c.interface_kernel_evaluations = interface;
+        let pair = slots.map(|mut f| {
+            if !converged(&f, rtol) {
+                mark_not_reached(&mut f, rtol);
+            }
+            let slot = |e: Option<Estimate>| e.expect("both friction slots");
+            [slot(f.sigma_rms_interface), slot(f.tau_rms_interface)]
+        });
+        if !converged(&c, rtol) {
+            mark_not_reached(&mut c, rtol);
         }
-        Ok(c)
+        Ok((c, pair))
     }
 }
 

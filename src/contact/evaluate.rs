@@ -53,8 +53,9 @@ const CUT_CHUNK: usize = 16;
 pub struct Scratch {
     base: BaseScratch,
     interface: InterfaceScratch,
-    /// S⁻², f², g², x, P and e^{−x²} at the graded region's nodes ([`Graded::integrate`]).
-    graded: [Vec<f64>; 6],
+    /// S⁻², f², g², x, P, e^{−x²} and the friction slots at the graded region's nodes
+    /// ([`Graded::integrate`]).
+    graded: [Vec<f64>; 8],
 }
 
 /// G's sum over all nodes ([`g_sum`]).
@@ -71,9 +72,11 @@ struct BaseScratch {
 /// The interface integrals' nodes, up to the cut.
 #[derive(Default)]
 struct InterfaceScratch {
-    /// f², g² at the nodes.
+    /// f², g² at the nodes, and the friction slots (under sliding, when asked for).
     f2: Vec<f64>,
     g2: Vec<f64>,
+    fx: Vec<f64>,
+    fy: Vec<f64>,
     /// G, x = p0/(2√G) and P at the nodes.
     g_node: Vec<f64>,
     x_node: Vec<f64>,
@@ -94,7 +97,8 @@ struct InterfaceScratch {
 
 /// What one evaluation is for: the grid, the kernels at one thickness, the depth of the
 /// interface (the film thickness, or z_k in a stack: the interface tail's q·d is q times it),
-/// the top layer's E*, the pressure, the request and the tolerance.
+/// the top layer's E*, the pressure, the request, whether the friction slots are asked for too
+/// (`super::sliding`: they share G, P and the cut's search with σ and τ), and the tolerance.
 pub(super) struct Point<'a> {
     pub(super) grid: &'a Grid,
     pub(super) graded: Option<&'a Graded>,
@@ -103,6 +107,7 @@ pub(super) struct Point<'a> {
     pub(super) e_top: f64,
     pub(super) p0: f64,
     pub(super) req: Request,
+    pub(super) friction: bool,
     pub(super) rtol: f64,
 }
 
@@ -110,21 +115,24 @@ pub(super) struct Point<'a> {
 struct Interface {
     sigma: Option<Estimate>,
     tau: Option<Estimate>,
+    /// The friction slots' rms (along x, along y), when asked for.
+    friction: Option<[Estimate; 2]>,
     /// The graded region's kernel evaluations.
     near_evaluations: usize,
     /// The nodes of this grid and the graded region that evaluated f, g.
     fg_evaluations: usize,
 }
 
-/// One evaluation on one grid. `evaluations`: kernel evaluations so far (all grids tried,
-/// this one's nodes included). The interface integrals stop where their tail's bound is below
-/// rtol/1000 of the rest (module doc, "Interface tail"), and take P as linear in G where that
-/// is within [`FLAT_SHARE`]·rtol of A ("Linear P").
+/// One evaluation on one grid, with the friction slots' rms when asked for. `evaluations`:
+/// kernel evaluations so far (all grids tried, this one's nodes included). The interface
+/// integrals stop where their tail's bound is below rtol/1000 of the rest (module doc,
+/// "Interface tail"), and take P as linear in G where that is within [`FLAT_SHARE`]·rtol of A
+/// ("Linear P").
 pub(super) fn evaluate_on(
     pt: &Point,
     evaluations: usize,
     scratch: &mut Scratch,
-) -> Result<Contact, Error> {
+) -> Result<(Contact, Option<[Estimate; 2]>), Error> {
     let Point {
         grid,
         depth: d,
@@ -160,7 +168,7 @@ pub(super) fn evaluate_on(
     });
 
     let interface = match pt.graded {
-        Some(graded) if req.interface() => interface(
+        Some(graded) if req.interface() || pt.friction => interface(
             pt,
             graded,
             (g1, area.value, g_sum),
@@ -171,6 +179,7 @@ pub(super) fn evaluate_on(
         _ => Interface {
             sigma: None,
             tau: None,
+            friction: None,
             near_evaluations: 0,
             fg_evaluations: 0,
         },
@@ -183,7 +192,7 @@ pub(super) fn evaluate_on(
         sqrt_estimate(ratio, ratio_err, Termination::Converged)
     });
 
-    Ok(Contact {
+    let contact = Contact {
         thickness: d,
         pressure: p0,
         g1,
@@ -196,7 +205,8 @@ pub(super) fn evaluate_on(
         kernel_evaluations: evaluations + interface.near_evaluations,
         // Here: this grid's nodes that evaluated f, g (the caller adds up the grids tried).
         interface_kernel_evaluations: interface.fg_evaluations,
-    })
+    };
+    Ok((contact, interface.friction))
 }
 
 /// Σ_j w_j ρ_j S⁻²_j over all nodes (G1 without the factor cg) and its error estimate, with
@@ -232,7 +242,7 @@ fn interface(
     (g1, area, g_sum): (Estimate, f64, f64),
     base: &BaseScratch,
     s: &mut InterfaceScratch,
-    graded_buf: &mut [Vec<f64>; 6],
+    graded_buf: &mut [Vec<f64>; 8],
 ) -> Interface {
     let Point {
         grid,
@@ -250,16 +260,18 @@ fn interface(
         (NEAR_NONE, 0)
     } else {
         (
-            graded.integrate(pt.kernels, p0, cg, req, graded_buf),
+            graded.integrate(pt.kernels, p0, cg, req, pt.friction, graded_buf),
             graded.base_from,
         )
     };
     let running = if from > 0 { span_raw } else { 0.0 };
     let (to, done) = interface_kernels(pt, (from, running), &near, area, g_sum, rho_k, s);
-    g_at_nodes(grid, cg, (from, to), &near, base, s);
-    let (flat, linear) = probability_at_nodes(pt, g1, area, (from, to), s);
-    probability_derivatives_at(grid, cg, p0, (from, to, flat), linear, rho_k, s);
-    let (sig, tau) = interface_sums(grid, (from, to), &near, req, rho_k, s);
+    // G and P up to the later cut; each slot's sums up to its own.
+    let last = to[0].max(to[1]);
+    g_at_nodes(grid, cg, (from, last), &near, base, s);
+    let (flat, linear) = probability_at_nodes(pt, g1, area, (from, last), s);
+    probability_derivatives_at(grid, cg, p0, (from, last, flat), linear, rho_k, s);
+    let [sig, tau, fx, fy] = interface_sums(grid, (from, to), &near, (req, pt.friction), rho_k, s);
     let rms = |acc: (f64, f64)| {
         let scaled = sqrt_estimate(2.0 * cg * acc.0, 2.0 * cg * acc.1, Termination::Converged);
         decayed(scaled, pt.kernels.shift())
@@ -267,20 +279,24 @@ fn interface(
     Interface {
         sigma: req.sigma_interface.then(|| rms(sig)),
         tau: req.tau_interface.then(|| rms(tau)),
+        friction: pt.friction.then(|| [rms(fx), rms(fy)]),
         near_evaluations: near.evaluations,
         fg_evaluations: done - 2 * from + near.evaluations,
     }
 }
 
-/// f², g² in ascending q from the first base node, until the first panel whose first node has
-/// q·d ≥ X_CUT and whose tail bound, F²(node)·Σ_{j ≥ node} w_j ρK_j (P ≤ 1, F² decreasing), is
-/// below tol = rtol/1000 times a lower bound of the integral before it for each F asked for: the
-/// graded region's sum plus A·Σ_{from ≤ j < node} w_j ρK_j F²_j (P ≥ P(G1) = A at every node).
-/// Σ_{j ≥ node} is `g_sum` less the running sum (`running`: the sum before panel `from`), plus
-/// both sums' rounding (all terms are positive). Then four more nodes for the divided
-/// differences. f², g² are evaluated in batches ([`Kernels::interface_many`]): below
-/// q·d = X_CUT in one, then [`CUT_CHUNK`] nodes at a time while the cut is looked for.
-/// Returns the first panel cut (`to`) and how far f², g² were evaluated.
+/// The interface slots' kernels (f², g², and the friction slots when asked for) in ascending q
+/// from the first base node, until for each group of slots (σ and τ as requested; the two
+/// friction slots) the first panel whose first node has q·d ≥ X_CUT and whose tail bound,
+/// F²(node)·Σ_{j ≥ node} w_j ρK_j (P ≤ 1, F² decreasing), is below tol = rtol/1000 times a lower
+/// bound of the integral before it for each F of the group: the graded region's sum plus
+/// A·Σ_{from ≤ j < node} w_j ρK_j F²_j (P ≥ P(G1) = A at every node). Σ_{j ≥ node} is `g_sum`
+/// less the running sum (`running`: the sum before panel `from`), plus both sums' rounding (all
+/// terms are positive). Then four more nodes beyond the later cut for the divided differences.
+/// The kernels are evaluated in batches ([`Kernels::interface_many`]): below q·d = X_CUT in one,
+/// then [`CUT_CHUNK`] nodes at a time while the cuts are looked for. Returns the first panel cut
+/// for each group (`to`; the friction slots' is σ and τ's when they are not asked for) and how
+/// far the kernels were evaluated.
 fn interface_kernels(
     pt: &Point,
     (from, mut running): (usize, f64),
@@ -289,67 +305,136 @@ fn interface_kernels(
     g_sum: f64,
     rho_k: &[f64],
     s: &mut InterfaceScratch,
-) -> (usize, usize) {
+) -> ([usize; 2], usize) {
     let Point {
-        grid, kernels, req, ..
+        grid,
+        kernels,
+        req,
+        friction,
+        ..
     } = *pt;
     let d = pt.depth;
     let tol = 1e-3 * pt.rtol;
     let n = grid.q.len();
     let rounding = 4.0 * EPS * n as f64 * g_sum;
-    let f2 = sized(&mut s.f2, n, 0.0);
-    let g2 = sized(&mut s.g2, n, 0.0);
-    let mut to = grid.panels();
-    let mut before = [near.sigma.0, near.tau.0];
+    let m = if friction { n } else { 0 };
+    let mut k2 = [
+        &mut sized(&mut s.f2, n, 0.0)[..],
+        sized(&mut s.g2, n, 0.0),
+        sized(&mut s.fx, m, 0.0),
+        sized(&mut s.fy, m, 0.0),
+    ];
+    // The slots each group's cut looks at.
+    let groups = [
+        [req.sigma_interface, req.tau_interface],
+        [friction, friction],
+    ];
+    let mut to = [grid.panels(); 2];
+    let mut open = [true, friction];
+    let mut before = [near.sigma, near.tau, near.friction[0], near.friction[1]].map(|a| a.0);
     let start = 2 * from;
     let checked = start + grid.q[start..].partition_point(|&q| q * d < X_CUT);
     let mut done = start;
-    let evaluate = |to: usize, done: &mut usize, f2: &mut [f64], g2: &mut [f64]| {
+    let evaluate = |to: usize, done: &mut usize, k2: &mut [&mut [f64]; 4]| {
         if to > *done {
             let r = *done..to;
+            let [f2, g2, fx, fy] = k2;
+            let fr = if friction {
+                Some([&mut fx[r.clone()], &mut fy[r.clone()]])
+            } else {
+                None
+            };
             kernels.interface_many(
                 &grid.q[r.clone()],
                 &grid.u[r.clone()],
                 &mut f2[r.clone()],
                 &mut g2[r],
+                fr,
             );
             *done = to;
         }
     };
-    evaluate(checked, &mut done, f2, g2);
-    let r = start..checked;
-    for (((&w, &fj), &f2j), &g2j) in grid.w[r.clone()]
-        .iter()
-        .zip(&rho_k[r.clone()])
-        .zip(&f2[r.clone()])
-        .zip(&g2[r])
-    {
-        let wf = w * fj;
-        running += wf;
-        before[0] += area * wf * f2j;
-        before[1] += area * wf * g2j;
-    }
+    let slots = if friction { 4 } else { 2 };
+    let add = |before: &mut [f64; 4], k2: &[&mut [f64]; 4], wf: f64, j: usize| {
+        for (b, k) in before.iter_mut().zip(k2).take(slots) {
+            *b += area * wf * k[j];
+        }
+    };
+    evaluate(checked, &mut done, &mut k2);
+    let below = Below {
+        w: &grid.w[start..checked],
+        rho_k: &rho_k[start..checked],
+        area,
+    };
+    below.add(&k2, start, friction, (&mut running, &mut before));
     for j in checked..n {
         if j == done {
-            evaluate((j + CUT_CHUNK).min(n), &mut done, f2, g2);
+            evaluate((j + CUT_CHUNK).min(n), &mut done, &mut k2);
         }
-        let (fj, gj) = (f2[j], g2[j]);
         if j % 2 == 0 {
             let rest = (g_sum - running).max(0.0) + rounding;
-            let small = |want: bool, fv: f64, b: f64| !want || fv * rest <= tol * b;
-            if small(req.sigma_interface, fj, before[0]) && small(req.tau_interface, gj, before[1])
-            {
-                to = j / 2;
+            let small = |want: bool, k: usize| !want || k2[k][j] * rest <= tol * before[k];
+            for (g, want) in groups.iter().enumerate() {
+                if open[g] && small(want[0], 2 * g) && small(want[1], 2 * g + 1) {
+                    (to[g], open[g]) = (j / 2, false);
+                }
+            }
+            if open == [false; 2] {
                 break;
             }
         }
         let wf = grid.w[j] * rho_k[j];
         running += wf;
-        before[0] += area * wf * fj;
-        before[1] += area * wf * gj;
+        add(&mut before, &k2, wf, j);
     }
-    evaluate((2 * to + 5).min(n), &mut done, f2, g2);
+    if !friction {
+        to[1] = to[0];
+    }
+    evaluate((2 * to[0].max(to[1]) + 5).min(n), &mut done, &mut k2);
     (to, done)
+}
+
+/// The nodes below the cut's search: their weights w and ρK, and A.
+struct Below<'a> {
+    w: &'a [f64],
+    rho_k: &'a [f64],
+    area: f64,
+}
+
+impl Below<'_> {
+    /// Σ w ρK over the nodes added to `running`, and A·Σ w ρK F² to `before` for σ and τ's
+    /// slots and with `friction` the friction slots' (`k2`: the four slots from node `start`).
+    fn add(
+        &self,
+        k2: &[&mut [f64]; 4],
+        start: usize,
+        friction: bool,
+        (running, before): (&mut f64, &mut [f64; 4]),
+    ) {
+        let r = start..start + self.w.len();
+        let [f2, g2, fx, fy] = k2;
+        let nodes = self.w.iter().zip(self.rho_k);
+        let static_slots = f2[r.clone()].iter().zip(&g2[r.clone()]);
+        let area = self.area;
+        if friction {
+            let slots = static_slots.zip(fx[r.clone()].iter().zip(&fy[r]));
+            for ((&w, &fj), ((&a, &b), (&c, &d))) in nodes.zip(slots) {
+                let wf = w * fj;
+                *running += wf;
+                before[0] += area * wf * a;
+                before[1] += area * wf * b;
+                before[2] += area * wf * c;
+                before[3] += area * wf * d;
+            }
+        } else {
+            for ((&w, &fj), (&a, &b)) in nodes.zip(static_slots) {
+                let wf = w * fj;
+                *running += wf;
+                before[0] += area * wf * a;
+                before[1] += area * wf * b;
+            }
+        }
+    }
 }
 
 /// G at every node of the panels [from, to) (forward pass: running sum plus the panel's
@@ -492,26 +577,28 @@ fn probability_derivatives_at(
     }
 }
 
-/// The σ and τ sums (without the factor 2cg) with their error estimates: the graded region's
-/// plus the two-node panels' [from, to), plus the tail's bound beyond the cut: there P ≤ 1 and
-/// F² ≤ its value at the first node left out (f², g² decrease for q·d ≥ X_CUT), so the tail is
-/// at most F²(that node)·Σ w ρ K.
+/// The sums of the slots σ, τ (as requested) and the two friction slots (when asked for),
+/// without the factor 2cg, with their error estimates: the graded region's plus the two-node
+/// panels' [from, to) (`to`: the cut of σ and τ, and of the friction slots), plus the tail's
+/// bound beyond the cut: there P ≤ 1 and F² ≤ its value at the first node left out (F²
+/// decreases for q·d ≥ X_CUT), so the tail is at most F²(that node)·Σ w ρ K. Slots not asked
+/// for are the graded region's (zero) sums.
 fn interface_sums(
     grid: &Grid,
-    (from, to): (usize, usize),
+    (from, to): (usize, [usize; 2]),
     near: &Near,
-    req: Request,
+    (req, friction): (Request, bool),
     rho_k: &[f64],
     s: &mut InterfaceScratch,
-) -> ((f64, f64), (f64, f64)) {
+) -> [(f64, f64); 4] {
     let n = grid.q.len();
     let f = rho_k;
-    let tail_weight: f64 = (2 * to..n).map(|j| grid.w[j] * f[j]).sum();
-    // ρ K F² at the nodes the sums and their divided differences use.
-    let used = (2 * to + 5).min(n);
+    let tail_weight = |to: usize| -> f64 { (2 * to..n).map(|j| grid.w[j] * f[j]).sum() };
     let InterfaceScratch {
         f2,
         g2,
+        fx,
+        fy,
         p_node,
         dp_cum,
         dp_part,
@@ -520,7 +607,9 @@ fn interface_sums(
         rho_k_f2_dd,
         ..
     } = s;
-    let mut sum = |k2: &[f64], acc: (f64, f64)| {
+    let mut sum = |k2: &[f64], to: usize, tail_weight: f64, acc: (f64, f64)| {
+        // ρ K F² at the nodes the sums and their divided differences use.
+        let used = (2 * to + 5).min(n);
         let a = sized(rho_k_f2, used, 0.0);
         let r = 2 * from..used;
         for ((a, &fj), &k2) in a[r.clone()].iter_mut().zip(&f[r.clone()]).zip(&k2[r]) {
@@ -530,14 +619,20 @@ fn interface_sums(
         let tail = k2.get(2 * to).map_or(0.0, |&k2c| k2c * tail_weight);
         (acc.0 + v, acc.1 + e + tail)
     };
-    let (mut sig, mut tau) = (near.sigma, near.tau);
+    let mut out = [near.sigma, near.tau, near.friction[0], near.friction[1]];
+    let weight = tail_weight(to[0]);
     if req.sigma_interface {
-        sig = sum(f2, sig);
+        out[0] = sum(f2, to[0], weight, out[0]);
     }
     if req.tau_interface {
-        tau = sum(g2, tau);
+        out[1] = sum(g2, to[0], weight, out[1]);
     }
-    (sig, tau)
+    if friction {
+        let weight = tail_weight(to[1]);
+        out[2] = sum(fx, to[1], weight, out[2]);
+        out[3] = sum(fy, to[1], weight, out[3]);
+    }
+    out
 }
 
 /// ln(a/b) for a, b > 0, for a growth rate that only scales an error estimate: 2 atanh(s) with

@@ -123,6 +123,8 @@ pub(super) struct Near {
     pub(super) g_raw_err: f64,
     pub(super) sigma: (f64, f64),
     pub(super) tau: (f64, f64),
+    /// The friction slots' sums with their errors (along x, along y), when asked for.
+    pub(super) friction: [(f64, f64); 2],
     /// Kernel evaluations made.
     pub(super) evaluations: usize,
 }
@@ -133,6 +135,7 @@ pub(super) const NEAR_NONE: Near = Near {
     g_raw_err: 0.0,
     sigma: (0.0, 0.0),
     tau: (0.0, 0.0),
+    friction: [(0.0, 0.0); 2],
     evaluations: 0,
 };
 
@@ -366,27 +369,26 @@ impl Graded {
         }
     }
 
-    /// The graded region's sums: the kernels at all its nodes in two batches (S⁻², then f² and
-    /// g²) into `buf`, G at all of them panel by panel, P at all of them in one batch, then the
-    /// panels' sums.
+    /// The graded region's sums: the kernels at all its nodes in two batches (S⁻², then the
+    /// interface slots) into `buf`, G at all of them panel by panel, P at all of them in one
+    /// batch, then the panels' sums; the friction slots' too with `friction`.
     pub(super) fn integrate(
         &self,
         kernels: &Kernels,
         p0: f64,
         cg: f64,
         req: Request,
-        buf: &mut [Vec<f64>; 6],
+        friction: bool,
+        buf: &mut [Vec<f64>; 8],
     ) -> Near {
-        let (k0, f0, g0) = {
-            let r = kernels.squared(self.q_l, self.q_l.ln());
-            (r.k, r.f2, r.g2)
-        };
+        let (r0, fr0) = kernels.squared(self.q_l, self.q_l.ln());
         // The largest merged panel over which G ≤ a²/36 by the bound G'(u_L)·r·e^{γr}.
-        let (a2, gp0) = (0.25 * p0 * p0, cg * self.w_at_l * k0);
+        let (a2, gp0) = (0.25 * p0 * p0, cg * self.w_at_l * r0.k);
         let merge = self
             .merged
             .iter()
             .rposition(|&(r, _)| gp0 * r * (self.growth * r).exp() <= a2 / 36.0);
+        let slots = Slots { req, friction };
         let (mut near, first) = match merge {
             Some(i) => {
                 let mut near = Near {
@@ -395,26 +397,29 @@ impl Graded {
                 };
                 let panel = &self.merged[i].1;
                 let m = 2 * panel.n - 1;
-                let mut v = [[0.0; 2 * GL_MAX - 1]; 6];
+                let mut v = [[0.0; 2 * GL_MAX - 1]; 8];
                 for (j, &(q, u)) in panel.sorted()[..m].iter().enumerate() {
-                    let r = kernels.squared(q, u);
+                    let (r, fr) = kernels.squared(q, u);
                     (v[0][j], v[1][j], v[2][j]) = (r.k, r.f2, r.g2);
+                    (v[6][j], v[7][j]) = (fr[0], fr[1]);
                 }
-                let [k, f2, g2, x, p, gauss] = &mut v;
+                let [k, f2, g2, x, p, gauss, fx, fy] = &mut v;
                 panel.arguments(k, &mut near, p0, cg, x);
                 erf_and_gauss_many(&x[..m], &mut p[..m], &mut gauss[..m]);
-                panel.sums(k, f2, g2, p, &mut near, req);
+                panel.sums(k, p, [&f2[..], &g2[..], &fx[..], &fy[..]], &mut near, slots);
                 (near, i + 1)
             }
             None => {
                 // Innermost piece: G grows linearly from 0, F² is constant to 1e-10.
-                let g_inner = self.w_l * k0;
+                let g_inner = self.w_l * r0.k;
                 let j0 = top_variance_half(p0, cg * g_inner) / cg;
+                let piece = |f: f64| (f * j0, 1e-9 * f * j0);
                 let near = Near {
                     g_raw: g_inner,
                     g_raw_err: 1e-9 * g_inner,
-                    sigma: (f0 * j0, 1e-9 * f0 * j0),
-                    tau: (g0 * j0, 1e-9 * g0 * j0),
+                    sigma: piece(r0.f2),
+                    tau: piece(r0.g2),
+                    friction: fr0.map(piece),
                     evaluations: 1,
                 };
                 (near, 0)
@@ -423,9 +428,14 @@ impl Graded {
         let lo = self.offsets[first];
         let (q, u) = (&self.nodes.0[lo..], &self.nodes.1[lo..]);
         let m = q.len();
-        let [k, f2, g2, x, p, gauss] = buf;
+        let [k, f2, g2, x, p, gauss, fx, fy] = buf;
         kernels.k_many(q, u, sized(k, m, 0.0));
-        kernels.interface_many(q, u, sized(f2, m, 0.0), sized(g2, m, 0.0));
+        let friction_buf = if friction {
+            Some([&mut sized(fx, m, 0.0)[..], sized(fy, m, 0.0)])
+        } else {
+            None
+        };
+        kernels.interface_many(q, u, sized(f2, m, 0.0), sized(g2, m, 0.0), friction_buf);
         let range = |i: usize| self.offsets[i] - lo..self.offsets[i + 1] - lo;
         sized(x, m, 0.0);
         for (i, panel) in self.panels.iter().enumerate().skip(first) {
@@ -435,17 +445,24 @@ impl Graded {
         erf_and_gauss_many(x, sized(p, m, 0.0), sized(gauss, m, 0.0));
         for (i, panel) in self.panels.iter().enumerate().skip(first) {
             let r = range(i);
-            panel.sums(
-                &k[r.clone()],
+            // The friction slots are empty unless asked for.
+            let kernels = [
                 &f2[r.clone()],
                 &g2[r.clone()],
-                &p[r],
-                &mut near,
-                req,
-            );
+                fx.get(r.clone()).unwrap_or(&[]),
+                fy.get(r.clone()).unwrap_or(&[]),
+            ];
+            panel.sums(&k[r.clone()], &p[r], kernels, &mut near, slots);
         }
         near
     }
+}
+
+/// Which of the four interface slots (σ, τ, friction along x and y) a sum is formed for.
+#[derive(Clone, Copy)]
+struct Slots {
+    req: Request,
+    friction: bool,
 }
 
 impl GlPanel {
@@ -484,9 +501,10 @@ impl GlPanel {
         near.evaluations += 2 * n - 1;
     }
 
-    /// The panel's σ and τ sums (n nodes; error: the difference to the companion's) added to
-    /// `near`, from S⁻², f², g² and P at its 2n − 1 nodes (ascending).
-    fn sums(&self, k: &[f64], f2: &[f64], g2: &[f64], p: &[f64], near: &mut Near, req: Request) {
+    /// The panel's sums of the slots asked for (n nodes; error: the difference to the
+    /// companion's) added to `near`, from S⁻², P and the slots' kernels (σ, τ, friction along x
+    /// and y) at its 2n − 1 nodes (ascending).
+    fn sums(&self, k: &[f64], p: &[f64], slots: [&[f64]; 4], near: &mut Near, on: Slots) {
         let n = self.n;
         let add = |acc: &mut (f64, f64), k2: &[f64]| {
             let term = |w: f64, j: usize| w * k[j] * p[j] * k2[j];
@@ -495,11 +513,16 @@ impl GlPanel {
             acc.0 += i_n;
             acc.1 += (i_n - i_c).abs() + 8.0 * EPS * i_n.abs();
         };
-        if req.sigma_interface {
+        let [f2, g2, fx, fy] = slots;
+        if on.req.sigma_interface {
             add(&mut near.sigma, f2);
         }
-        if req.tau_interface {
+        if on.req.tau_interface {
             add(&mut near.tau, g2);
+        }
+        if on.friction {
+            add(&mut near.friction[0], fx);
+            add(&mut near.friction[1], fy);
         }
     }
 }

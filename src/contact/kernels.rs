@@ -13,10 +13,11 @@
 //! where S = 1 and the table holds no f, g panels, and the integrals stop within a few q·d of
 //! q_L d, so the exact forms cost a few hundred evaluations.
 //!
-//! Under sliding ([`super::sliding`]) the interface integrals take other kernels in the two
-//! slots of f² and g² ([`Mix`]), from the squares of the tangential kernels
-//! ([`crate::layer::tangential`]) in the pair's [`TangentialTable`] (built over the static
-//! table's range, checked like it), or exact where there is no table: every mix is a sum of
+//! Under sliding ([`super::sliding`]) the interface integrals take σ's slot mixed with f_t²
+//! ([`Mix`]) and two more slots, the friction kernels, from the squares of the tangential
+//! kernels ([`crate::layer::tangential`]) in the pair's [`TangentialTable`] (built over the
+//! static table's range, checked like it; read in the same batches as the static table, all
+//! three squares at once), or exact where there is no table: every slot is a sum of
 //! squares, and like f², g² decreases above q·d = 20 (each of g_t, f_t, h is (a + b x)e^{−x}
 //! there, with its zero, if any, below x = 2), which the interface integrals' cut relies on.
 //! Where the kernels are scaled (thick films), the tangential kernels are scaled alike, from
@@ -33,33 +34,15 @@ use std::cell::RefCell;
 /// range.
 pub(super) const X_SHIFT: f64 = 200.0;
 
-/// What the interface integrals' two slots (σ, τ) integrate against P and S⁻².
+/// What the interface integrals' two slots (σ, τ) integrate against P and S⁻²; under sliding
+/// the evaluation may also ask for the two friction slots, the friction-driven shear per unit
+/// μ²: ((g_t + h)/2)² + (g_t − h)²/8 along x and (g_t − h)²/8 along y ([`super::sliding`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Mix {
     /// f², g² (eqs. B8–B9).
     Static,
     /// f² + μ² f_t²/2 (the interface normal stress with the friction-driven part) and g².
     Sliding { mu2: f64 },
-    /// The friction-driven shear per unit μ²: ((g_t + h)/2)² + (g_t − h)²/8 along x and
-    /// (g_t − h)²/8 along y ([`super::sliding`]).
-    Friction,
-}
-
-impl Mix {
-    /// The two slots from the static f², g² (unused by [`Mix::Friction`]) and the squares
-    /// f_t², ((g_t + h)/2)² + (g_t − h)²/8, (g_t − h)²/8 (`squares`, called only under
-    /// sliding), all at one node and scaled alike.
-    #[inline]
-    fn apply(self, squares: impl FnOnce() -> [f64; 3], (f2, g2): (f64, f64)) -> (f64, f64) {
-        match self {
-            Mix::Static => (f2, g2),
-            Mix::Sliding { mu2 } => (f2 + 0.5 * mu2 * squares()[0], g2),
-            Mix::Friction => {
-                let [_, along, across] = squares();
-                (along, across)
-            }
-        }
-    }
 }
 
 /// Where the kernels come from.
@@ -162,12 +145,16 @@ impl<'a> Kernels<'a> {
         undecayed_squares(layers, x).map(|v| v * e * e)
     }
 
-    /// The interface slots `fg` (static f², g² at q, times e^{2s}) turned by the mix.
+    /// The σ and τ slots at q from the static f², g² there (times e^{2s}), and the friction
+    /// slots (zero under [`Mix::Static`]).
     #[inline]
-    fn apply_mix(&self, q: f64, u: f64, fg: (f64, f64)) -> (f64, f64) {
+    fn mixed_at(&self, q: f64, u: f64, (f2, g2): (f64, f64)) -> ((f64, f64), [f64; 2]) {
         match self.mix {
-            Mix::Static => fg,
-            mix => mix.apply(|| self.friction_squares(q, u), fg),
+            Mix::Static => ((f2, g2), [0.0; 2]),
+            Mix::Sliding { mu2 } => {
+                let [f_t2, along, across] = self.friction_squares(q, u);
+                ((f2 + 0.5 * mu2 * f_t2, g2), [along, across])
+            }
         }
     }
 
@@ -180,6 +167,12 @@ impl<'a> Kernels<'a> {
             mix: Mix::Static,
             tangential: None,
         }
+    }
+
+    /// Whether the interface slots are mixed for sliding (and the friction slots can be asked
+    /// for).
+    pub(super) fn sliding(&self) -> bool {
+        matches!(self.mix, Mix::Sliding { .. })
     }
 
     /// s: the f², g² returned are f² e^{2s}, g² e^{2s} (0 unless q_L d > [`X_SHIFT`]).
@@ -211,17 +204,6 @@ impl<'a> Kernels<'a> {
         let (f, g) = layers.interface_undecayed(x);
         let e = (-(x - self.shift).max(0.0)).exp();
         ((f * e).powi(2), (g * e).powi(2))
-    }
-
-    /// f², g² at the node (times e^{2s}).
-    #[inline]
-    pub(super) fn interface(&self, q: f64, u: f64) -> (f64, f64) {
-        let fg = if self.mix == Mix::Friction {
-            (0.0, 0.0)
-        } else {
-            self.static_interface(q, u)
-        };
-        self.apply_mix(q, u, fg)
     }
 
     /// f², g² at the node (times e^{2s}), before the mix.
@@ -256,60 +238,58 @@ impl<'a> Kernels<'a> {
         }
     }
 
-    /// f², g² (times e^{2s}) at the ascending nodes (q, u), into `f2` and `g2`.
-    pub(super) fn interface_many(&self, q: &[f64], u: &[f64], f2: &mut [f64], g2: &mut [f64]) {
-        match self.source {
-            Source::Table { table, d, ln_d } if self.shift == 0.0 => {
-                if self.mix != Mix::Friction {
-                    table.interface_many(Nodes { q, u, d, ln_d }, f2, g2);
-                }
-                let nodes = f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u);
-                match (self.mix, self.tangential) {
-                    (Mix::Static, _) => {}
-                    // Only the squares the mix uses, as `Mix::apply` combines them.
+    /// The σ and τ slots (f², g² times e^{2s}, mixed) at the ascending nodes (q, u), into `f2`
+    /// and `g2`, and with `friction` the friction slots into its two slices (under
+    /// [`Mix::Sliding`] only).
+    pub(super) fn interface_many(
+        &self,
+        q: &[f64],
+        u: &[f64],
+        f2: &mut [f64],
+        g2: &mut [f64],
+        mut friction: Option<[&mut [f64]; 2]>,
+    ) {
+        match (self.source, self.mix) {
+            (Source::Table { table, d, ln_d }, mix) if self.shift == 0.0 => {
+                let at = Nodes { q, u, d, ln_d };
+                table.interface_many(at, f2, g2);
+                match (mix, self.tangential) {
+                    (Mix::Static, _) => return,
                     (Mix::Sliding { mu2 }, Some(t)) => {
-                        for (((fo, _), &q), &u) in nodes {
-                            *fo += 0.5 * mu2 * t.square(0, q * d, u + ln_d);
-                        }
+                        return t.slots_many(at, 0.5 * mu2, f2, friction);
                     }
-                    (Mix::Friction, Some(t)) => {
-                        for (((fo, go), &q), &u) in nodes {
-                            let (x, y) = (q * d, u + ln_d);
-                            (*fo, *go) = (t.square(1, x, y), t.square(2, x, y));
-                        }
-                    }
-                    (_, None) => {
-                        for (((fo, go), &q), &u) in nodes {
-                            (*fo, *go) = self.apply_mix(q, u, (*fo, *go));
-                        }
+                    (Mix::Sliding { .. }, None) => {}
+                }
+                for (j, (&q, &u)) in q.iter().zip(u).enumerate() {
+                    let (fg, fr) = self.mixed_at(q, u, (f2[j], g2[j]));
+                    (f2[j], g2[j]) = fg;
+                    if let Some([a, c]) = friction.as_mut() {
+                        (a[j], c[j]) = (fr[0], fr[1]);
                     }
                 }
             }
-            Source::Stack { k, memo } if self.mix == Mix::Static => {
+            (Source::Stack { k, memo }, Mix::Static) => {
                 memo.borrow_mut().interface_many(k, q, f2, g2);
             }
             _ => {
-                for (((fo, go), &q), &u) in f2.iter_mut().zip(g2.iter_mut()).zip(q).zip(u) {
-                    (*fo, *go) = self.interface(q, u);
+                for (j, (&q, &u)) in q.iter().zip(u).enumerate() {
+                    let (fg, fr) = self.mixed_at(q, u, self.static_interface(q, u));
+                    (f2[j], g2[j]) = fg;
+                    if let Some([a, c]) = friction.as_mut() {
+                        (a[j], c[j]) = (fr[0], fr[1]);
+                    }
                 }
             }
         }
     }
 
-    /// S⁻², f², g² (the latter times e^{2s}, and mixed) at the node.
+    /// S⁻², the σ and τ slots (f², g² times e^{2s}, mixed) and the friction slots (zero under
+    /// [`Mix::Static`]) at the node.
     #[inline]
-    pub(super) fn squared(&self, q: f64, u: f64) -> Squared {
+    pub(super) fn squared(&self, q: f64, u: f64) -> (Squared, [f64; 2]) {
         let s = self.static_squared(q, u);
-        if self.mix == Mix::Static {
-            return s;
-        }
-        let fg = if self.mix == Mix::Friction {
-            (0.0, 0.0)
-        } else {
-            (s.f2, s.g2)
-        };
-        let (f2, g2) = self.apply_mix(q, u, fg);
-        Squared { k: s.k, f2, g2 }
+        let ((f2, g2), friction) = self.mixed_at(q, u, (s.f2, s.g2));
+        (Squared { k: s.k, f2, g2 }, friction)
     }
 
     /// S⁻², f², g² (the latter times e^{2s}) at the node, before the mix.

@@ -32,9 +32,9 @@
 //! with τ_rms the static value (eq. B9; its two components share it equally). The mean friction
 //! μp0 is a uniform traction (q = 0: g_t = 1) and passes the film unchanged: the interface shear
 //! vector is (μp0 + X, Y). All kernels are squares, so the integrals go through the static
-//! machinery ([`super::Engine`], with its error estimates and refinement) in two passes: the
-//! first with σ's kernel f² + μ²f_t²/2 in place of f², the second with the friction kernels in
-//! both slots. g_t − h is a difference of two values near 1 at small q·d (it is O(q·d)): its
+//! machinery ([`super::Engine`], with its error estimates and refinement) in one pass: σ's
+//! kernel f² + μ²f_t²/2 in place of f², and the two friction kernels in two more slots summed
+//! with the same G, P and nodes (each slot with its own cut and error estimate). g_t − h is a difference of two values near 1 at small q·d (it is O(q·d)): its
 //! relative error there is about 1e−16/(q·d), 1e−10 at the thinnest films the checks scan
 //! (q_L d = 1e−6), where τ_y's friction part is O((q·d)²) of τ_x's.
 //!
@@ -67,7 +67,7 @@ pub struct SlidingShear {
 impl Engine {
     /// The contact under sliding with friction μ ≥ 0 (module doc): the static results, except
     /// that `sigma_rms_interface` includes the friction-driven part; with `tau_interface`
-    /// requested, also the interface shear vector's mean and rms (the second pass only when
+    /// requested, also the interface shear vector's mean and rms (the friction slots only when
     /// μ > 0).
     pub fn evaluate_sliding(
         &self,
@@ -89,27 +89,11 @@ impl Engine {
         } else {
             Mix::Static
         };
-        let mut contact = self.evaluate_mixed(stack, p0, request, mix)?;
+        let (contact, pair) = self.evaluate_mixed(stack, p0, request, mix)?;
         let Some(tau) = contact.tau_rms_interface else {
             return Ok((contact, None));
         };
-        let (fx, fy) = if mu > 0.0 {
-            let both = Request {
-                sigma_interface: true,
-                tau_interface: true,
-                ..Request::default()
-            };
-            let friction = self.evaluate_mixed(stack, p0, both, Mix::Friction)?;
-            contact.kernel_evaluations += friction.kernel_evaluations;
-            contact.interface_kernel_evaluations += friction.interface_kernel_evaluations;
-            let slot = |e: Option<Estimate>| e.expect("both slots requested");
-            (
-                slot(friction.sigma_rms_interface),
-                slot(friction.tau_rms_interface),
-            )
-        } else {
-            (Estimate::exact(0.0), Estimate::exact(0.0))
-        };
+        let [fx, fy] = pair.unwrap_or([Estimate::exact(0.0); 2]);
         let component = |f: Estimate| combine(tau, mu2, f);
         let shear = SlidingShear {
             friction: mu,

@@ -25,6 +25,9 @@ use crate::prec::Estimate;
 use serde::Serialize;
 use std::cell::RefCell;
 
+/// Every interface's friction slots under sliding ([`Engine::refine`]), top first.
+type FrictionSlots = Vec<Option<[Estimate; 2]>>;
+
 /// σ_rms and τ_rms at one interface of a stack.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct InterfaceContact {
@@ -52,18 +55,21 @@ impl Engine {
         p0: f64,
         request: Request,
     ) -> Result<StackContact, Error> {
-        self.evaluate_stack_mixed(stack, p0, request, Mix::Static)
+        Ok(self
+            .evaluate_stack_mixed(stack, p0, request, Mix::Static)?
+            .0)
     }
 
     /// [`Self::evaluate_stack`] with the interface slots mixed by `mix` (sliding,
-    /// [`super::stack_sliding`]).
+    /// [`super::stack_sliding`]), with every interface's friction slots ([`Engine::refine`];
+    /// `None` unless `mix` is sliding and τ is requested).
     pub(super) fn evaluate_stack_mixed(
         &self,
         stack: &Stack,
         p0: f64,
         request: Request,
         mix: Mix,
-    ) -> Result<StackContact, Error> {
+    ) -> Result<(StackContact, FrictionSlots), Error> {
         if !(p0.is_finite() && p0 > 0.0) {
             return Err(Error::invalid(
                 "nominal pressure p0",
@@ -93,11 +99,12 @@ impl Engine {
         p0: f64,
         request: Request,
         mix: Mix,
-    ) -> Result<StackContact, Error> {
+    ) -> Result<(StackContact, FrictionSlots), Error> {
         let stack = memo.borrow().stack().clone();
         let e_top = stack.layers()[0].material.e_star();
         let mut top = None;
         let mut interfaces = Vec::with_capacity(stack.layers().len());
+        let mut friction = Vec::with_capacity(stack.layers().len());
         for (k, depth) in stack.depths().into_iter().enumerate() {
             let req = Request {
                 sigma_top: request.sigma_top && k == 0,
@@ -111,7 +118,8 @@ impl Engine {
                 kernel_rtol: STACK_RTOL,
             };
             let kernels = Kernels::stack(k, memo).mixed(mix, None);
-            let c = self.refine(&kernels, at, req)?;
+            let (c, pair) = self.refine(&kernels, at, req)?;
+            friction.push(pair);
             interfaces.push(InterfaceContact {
                 depth,
                 sigma_rms: c.sigma_rms_interface,
@@ -119,9 +127,10 @@ impl Engine {
             });
             top.get_or_insert(c);
         }
-        Ok(StackContact {
+        let contact = StackContact {
             top: top.expect("a stack has a layer"),
             interfaces,
-        })
+        };
+        Ok((contact, friction))
     }
 }

@@ -30,7 +30,8 @@ impl Engine {
     /// The contact on a stack under sliding with friction μ ≥ 0: the static results of
     /// [`Engine::evaluate_stack`], except that every interface's σ_rms includes the
     /// friction-driven part; with `tau_interface` requested, also every interface's shear
-    /// vector mean and rms (top first; the second pass only when μ > 0).
+    /// vector mean and rms (top first; the friction slots, evaluated with the others, only when
+    /// μ > 0).
     pub fn evaluate_stack_sliding(
         &self,
         stack: &Stack,
@@ -51,32 +52,17 @@ impl Engine {
         } else {
             Mix::Static
         };
-        let mut contact = self.evaluate_stack_mixed(stack, p0, request, mix)?;
+        let (contact, pairs) = self.evaluate_stack_mixed(stack, p0, request, mix)?;
         if !request.tau_interface {
             return Ok((contact, None));
         }
-        let friction = if mu > 0.0 {
-            let both = Request {
-                sigma_interface: true,
-                tau_interface: true,
-                ..Request::default()
-            };
-            let f = self.evaluate_stack_mixed(stack, p0, both, Mix::Friction)?;
-            contact.top.kernel_evaluations += f.top.kernel_evaluations;
-            contact.top.interface_kernel_evaluations += f.top.interface_kernel_evaluations;
-            let slot = |e: Option<Estimate>| e.expect("both slots requested");
-            f.interfaces
-                .iter()
-                .map(|i| (slot(i.sigma_rms), slot(i.tau_rms)))
-                .collect()
-        } else {
-            vec![(Estimate::exact(0.0), Estimate::exact(0.0)); contact.interfaces.len()]
-        };
+        let none = [Estimate::exact(0.0); 2];
+        let friction = pairs.into_iter().map(|p| p.unwrap_or(none));
         let shears = contact
             .interfaces
             .iter()
             .zip(friction)
-            .map(|(i, (fx, fy))| {
+            .map(|(i, [fx, fy])| {
                 let tau = i.tau_rms.expect("tau_interface requested");
                 SlidingShear {
                     friction: mu,

@@ -55,10 +55,11 @@
 //! K is symmetric, and one of the two loses digits when the layer's and the base's couplings
 //! nearly cancel (a soft layer between two stiff ones at q d ≈ 0.02 lost 1e−11 otherwise).
 //!
-//! Stresses. From the top, t(0) = (0, 1) and ũ(0) = K̃_1⁻¹ t(0), or Y X⁻¹ t(0) if layer 1 is thin
-//! (S = −W̃(0)/(2(1 − ν_1))); down
+//! Stresses. From the top, t(0) = (0, 1) and ũ(0) = K̃_1⁻¹ t(0) = (I + ER)(K_d + K_u ER)⁻¹ t(0)
+//! (K̃_t (I + ER) = K_d + K_u ER, as K_u − K_d is a multiple of I: the top layer's stiffness
+//! itself is not formed), or Y X⁻¹ t(0) if layer 1 is thin (S = −W̃(0)/(2(1 − ν_1))); down
 //! through each layer, given the state (ũ_t, t_t) at its top:
-//! - thick: v = (K̃_t (I + ER))⁻¹ t_t, ũ_b = B v, t_b = K̃_b ũ_b;
+//! - thick: v = (K_d + K_u ER)⁻¹ t_t, ũ_b = B v, t_b = K̃_b ũ_b;
 //! - thin: two forms of each component of ũ_b (X⁻¹ t_t, and ũ_t + (P_uu − I)ũ_t + P_ut t_t with
 //!   P = exp(xA)) and of t_b (K̃_b ũ_b, and t_t + P_tu ũ_t + (P_tt − I) t_t), each component taken
 //!   from the form with the smaller cancellation ratio. A stiff thin plate on a soft base carries
@@ -124,13 +125,37 @@ const fn series(first: usize, weighted: bool, half: bool) -> [f64; TERMS] {
     c
 }
 
-const ALPHA_M1: [f64; TERMS] = series(4, true, false);
-const BETA_MX: [f64; TERMS] = series(5, true, false);
-const GAMMA: [f64; TERMS] = series(1, false, true);
-const DELTA: [f64; TERMS] = series(3, true, false);
+/// The four series' coefficients side by side, term k in row k: (α − 1, β − x, γ, δ) as above.
+const SERIES: [[f64; 4]; TERMS] = {
+    let s = [
+        series(4, true, false),
+        series(5, true, false),
+        series(1, false, true),
+        series(3, true, false),
+    ];
+    let mut c = [[0.0; 4]; TERMS];
+    let mut k = 0;
+    while k < TERMS {
+        let mut j = 0;
+        while j < 4 {
+            c[k][j] = s[j][k];
+            j += 1;
+        }
+        k += 1;
+    }
+    c
+};
 
-fn horner(c: &[f64; TERMS], x2: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &ck| acc * x2 + ck)
+/// The four series' sums in x² (each by Horner's rule, the four side by side).
+fn horner4(x2: f64) -> [f64; 4] {
+    SERIES.iter().rev().fold([0.0; 4], |acc, ck| {
+        [
+            acc[0] * x2 + ck[0],
+            acc[1] * x2 + ck[1],
+            acc[2] * x2 + ck[2],
+            acc[3] * x2 + ck[3],
+        ]
+    })
 }
 
 fn mul(a: &M2, b: &M2) -> M2 {
@@ -307,26 +332,42 @@ impl Consts {
         2.0 * self.ku[0][0]
     }
 
-    /// exp(xA) − I and exp(−xA) − I for 0 ≤ x ≤ 1 (P − I and Q − I), from one set of series:
-    /// the odd terms change sign, each term is formed once.
-    fn propagators_minus_i(&self, x: f64) -> (M4, M4) {
+    /// The blocks of exp(xA) − I and exp(−xA) − I for 0 ≤ x ≤ 1 (P − I and Q − I), from one set
+    /// of series: the odd terms change sign, each term is formed once. A and A³ couple (Ũ, Σ)
+    /// only with (W̃, T) and A² only within each pair ([`cross`]), so an entry of P − I is
+    /// either odd (β A + δ A³, negated in Q) or even ((α − 1) I + γ A², the same in Q): the sums
+    /// of the full four-term form with its exact zeros left out.
+    fn propagators_minus_i(&self, x: f64) -> ([M2; 4], [M2; 4]) {
         let x2 = x * x;
-        let am1 = -x2 * x2 * horner(&ALPHA_M1, x2);
-        let beta = x - x2 * x2 * x * horner(&BETA_MX, x2);
-        let gamma = x2 * horner(&GAMMA, x2);
-        let delta = x2 * x * horner(&DELTA, x2);
+        let [h_a, h_b, h_g, h_d] = horner4(x2);
+        let am1 = -x2 * x2 * h_a;
+        let beta = x - x2 * x2 * x * h_b;
+        let gamma = x2 * h_g;
+        let delta = x2 * x * h_d;
         let [a1, a2, a3] = &self.powers;
         let (mut p, mut q) = ([[0.0; 4]; 4], [[0.0; 4]; 4]);
         for i in 0..4 {
             for j in 0..4 {
-                let diag = if i == j { am1 } else { 0.0 };
-                let (odd1, even, odd3) = (beta * a1[i][j], gamma * a2[i][j], delta * a3[i][j]);
-                p[i][j] = diag + odd1 + even + odd3;
-                q[i][j] = diag + -odd1 + even + -odd3;
+                if cross(i, j) {
+                    let odd = 0.0 + beta * a1[i][j] + delta * a3[i][j];
+                    p[i][j] = odd;
+                    q[i][j] = 0.0 - odd;
+                } else {
+                    let diag = if i == j { am1 } else { 0.0 };
+                    let even = diag + 0.0 + gamma * a2[i][j];
+                    p[i][j] = even;
+                    q[i][j] = even;
+                }
             }
         }
-        (p, q)
+        (blocks(&p), blocks(&q))
     }
+}
+
+/// Whether the entry (i, j) of a 4×4 matrix on (Ũ, W̃, T, Σ) couples (Ũ, Σ) with (W̃, T): A
+/// and A³ have only such entries, I and A² none.
+const fn cross(i: usize, j: usize) -> bool {
+    (i == 0 || i == 3) != (j == 0 || j == 3)
 }
 
 /// What the downward pass needs of one layer, in that layer's units.
@@ -336,14 +377,17 @@ enum Step {
         kb: M2,
         x_inv: M2,
         y: M2,
-        /// exp(xA) − I.
-        p: M4,
+        /// The blocks (uu, ut, tu, tt) of exp(xA) − I.
+        p: [M2; 4],
     },
     Thick {
         kb: M2,
-        /// (K̃_t (I + ER))⁻¹: top traction to the downward part's displacement.
+        /// (K̃_t (I + ER))⁻¹ = (K_d + K_u ER)⁻¹: top traction to the downward part's
+        /// displacement.
         v_of_t: M2,
         b: M2,
+        /// I + ER: the downward part's displacement to the top displacement.
+        i_er: M2,
     },
 }
 
@@ -427,8 +471,8 @@ impl Stack {
         debug_assert!(q >= 0.0 && out.len() == self.layers.len());
         let n = self.layers.len();
         let mut steps = [EMPTY_STEP; MAX_LAYERS];
-        let k_pa = self.up(q, 0, self.substrate_stiffness(), &mut steps[..n]);
-        self.down(k_pa, &steps[..n], &[], out)
+        self.up_to_top(q, self.substrate_stiffness(), &mut steps[..n]);
+        self.down(&steps[..n], &[], out)
     }
 
     /// The substrate's stiffness t = K q·u (Pa).
@@ -456,24 +500,49 @@ impl Stack {
         k_pa
     }
 
-    /// [`Self::up`] through layers 0 … `steps.len() − 1` from the top of the base, the lowest
-    /// of them on its face `face` to the base.
-    fn up_from_face(&self, q: f64, face: &Face, steps: &mut [Step]) -> M2 {
+    /// [`Self::up`] through layers 0 … `steps.len() − 1` (not none) from the stiffness `k_pa`
+    /// (Pa) below the last of them, without the top layer's stiffness: the top displacement
+    /// comes from the top layer's step ([`Self::top_displacement`]).
+    fn up_to_top(&self, q: f64, k_pa: M2, steps: &mut [Step]) {
+        let (top, below) = steps.split_first_mut().expect("a layer");
+        let k_pa = self.up(q, 1, k_pa, below);
+        let c = &self.consts[0];
+        let kb = scale(&k_pa, c.inv_two_g);
+        let x = q * self.layers[0].thickness;
+        if x <= X_THIN {
+            thin_step(c, x, kb, top);
+        } else {
+            thick_step(c, x, &Face::new(c, kb), top);
+        }
+    }
+
+    /// [`Self::up_to_top`] through layers 0 … `steps.len() − 1` from the top of the base, the
+    /// lowest of them on its face `face` to the base.
+    fn up_from_face(&self, q: f64, face: &Face, steps: &mut [Step]) {
         let (last, above) = steps.split_last_mut().expect("a layer above the base");
         let c = &self.consts[above.len()];
         let x = q * self.layers[above.len()].thickness;
-        let kt = if x <= X_THIN {
+        let thin = x <= X_THIN;
+        if above.is_empty() {
+            if thin {
+                thin_step(c, x, face.kb, last);
+            } else {
+                thick_step(c, x, face, last);
+            }
+            return;
+        }
+        let kt = if thin {
             thin_up(c, x, face.kb, last)
         } else {
             thick_up(c, x, face, last)
         };
-        self.up(q, 0, scale(&kt, c.two_g), above)
+        self.up_to_top(q, scale(&kt, c.two_g), above);
     }
 
-    /// The downward pass from the top, whose stiffness is `k_pa` (Pa), through the steps of
-    /// every layer (`upper`, not empty, then `lower`; top first): S, and (f_k, g_k) into `out`.
-    fn down(&self, k_pa: M2, upper: &[Step], lower: &[Step], out: &mut [(f64, f64)]) -> f64 {
-        let u0 = self.top_displacement(k_pa, &upper[0], [0.0, 1.0]);
+    /// The downward pass from the top through the steps of every layer (`upper`, not empty,
+    /// then `lower`; top first): S, and (f_k, g_k) into `out`.
+    fn down(&self, upper: &[Step], lower: &[Step], out: &mut [(f64, f64)]) -> f64 {
+        let u0 = self.top_displacement(&upper[0], [0.0, 1.0]);
         self.interfaces_from(u0, upper, lower, out);
         self.s_of(u0)
     }
@@ -484,13 +553,14 @@ impl Stack {
     }
 
     /// The top displacement ũ(0) (in the top layer's units) under the top traction t(0) = `t0`,
-    /// from the stiffness `k_pa` (Pa) at the top and the top layer's step.
-    fn top_displacement(&self, k_pa: M2, top_step: &Step, t0: V2) -> V2 {
+    /// from the top layer's step.
+    fn top_displacement(&self, top_step: &Step, t0: V2) -> V2 {
         // Y X⁻¹ for a thin top layer (no inversion of the stiffness, which cancels for a thin
-        // incompressible layer on a far stiffer base), K̃_1⁻¹ otherwise.
+        // incompressible layer on a far stiffer base), K̃_1⁻¹ = (I + ER)(K̃_1 (I + ER))⁻¹ for a
+        // thick one.
         match top_step {
             Step::Thin { x_inv, y, .. } => mulv(y, mulv(x_inv, t0)),
-            Step::Thick { .. } => mulv(&inv(&scale(&k_pa, self.consts[0].inv_two_g)), t0),
+            Step::Thick { v_of_t, i_er, .. } => mulv(i_er, mulv(v_of_t, t0)),
         }
     }
 
@@ -809,8 +879,8 @@ impl StackCache {
         let above = self.varied + 1;
         let node = &mut self.nodes[i];
         let upper = &mut self.upper_steps[i * above..(i + 1) * above];
-        let k_pa = self.stack.up_from_face(q, &node.face, upper);
-        node.u0 = self.stack.top_displacement(k_pa, &upper[0], [0.0, 1.0]);
+        self.stack.up_from_face(q, &node.face, upper);
+        node.u0 = self.stack.top_displacement(&upper[0], [0.0, 1.0]);
         node.s = self.stack.s_of(node.u0);
         node.generation = self.generation;
     }
@@ -835,93 +905,102 @@ const EMPTY_STEP: Step = Step::Thick {
     kb: I2,
     v_of_t: I2,
     b: I2,
+    i_er: I2,
 };
 
 fn scale_v(v: V2, s: f64) -> V2 {
     [v[0] * s, v[1] * s]
 }
 
-/// The thin-layer step: K̃_t from K̃_b with the propagator Q = exp(−xA), the step into `step`
-/// (written in place: a step is some hundred bytes).
-fn thin_up(c: &Consts, x: f64, kb: M2, step: &mut Step) -> M2 {
-    let (p, q) = c.propagators_minus_i(x);
-    let [quu, qut, qtu, qtt] = blocks(&q);
+/// The thin-layer step with the propagator Q = exp(−xA) on the stiffness K̃_b below the layer,
+/// into `step` (written in place: a step is some hundred bytes); X and Y (K̃_t = X Y⁻¹).
+fn thin_step(c: &Consts, x: f64, kb: M2, step: &mut Step) -> (M2, M2) {
+    let (p, [quu, qut, qtu, qtt]) = c.propagators_minus_i(x);
     let x_m = add(&add(&qtu, &kb), &mul(&qtt, &kb));
     let y_m = add(&add(&I2, &quu), &mul(&qut, &kb));
-    let kt = mul_sym(&x_m, &inv(&y_m));
     *step = Step::Thin {
         kb,
         x_inv: inv(&x_m),
         y: y_m,
         p,
     };
-    kt
+    (x_m, y_m)
 }
 
-/// What a layer's step needs of the stiffness below it, in the layer's units: K̃_b, and for the
-/// thick step (K_u − K̃_b)⁻¹ and K̃_b − K_d.
+/// [`thin_step`] and the stiffness K̃_t above the layer.
+fn thin_up(c: &Consts, x: f64, kb: M2, step: &mut Step) -> M2 {
+    let (x_m, y_m) = thin_step(c, x, kb, step);
+    mul_sym(&x_m, &inv(&y_m))
+}
+
+/// What a layer's thick step needs of the stiffness K̃_b below it (in the layer's units), none
+/// of it depending on the layer's thickness: K̃_b, (K_u − K̃_b)⁻¹(K̃_b − K_d) and
+/// (K_u − K_d)(K_u − K̃_b)⁻¹.
 #[derive(Debug, Clone, Copy)]
 struct Face {
     kb: M2,
-    ku_kb_inv: M2,
-    kb_kd: M2,
+    r0: M2,
+    b0: M2,
 }
 
 impl Face {
     /// The face of layer `c` on the stiffness K̃_b (in its units) below it.
     fn new(c: &Consts, kb: M2) -> Self {
+        let ku_kb_inv = inv(&sub(&c.ku, &kb));
         Self {
             kb,
-            ku_kb_inv: inv(&sub(&c.ku, &kb)),
-            kb_kd: sub(&kb, &c.kd),
+            r0: mul(&ku_kb_inv, &sub(&kb, &c.kd)),
+            b0: scale(&ku_kb_inv, c.ku_minus_kd()),
         }
     }
 }
 
-/// The thick-layer step: K̃_t from K̃_b with decaying exponentials only, the step into `step`.
-fn thick_up(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
-    let Face {
-        kb,
-        ku_kb_inv,
-        kb_kd,
-    } = *face;
+/// The thick-layer step with decaying exponentials only, into `step`; ER.
+fn thick_step(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
     let e = (-x).exp();
     let xk = x / c.kappa;
     let ed = scale(&[[1.0 - xk, xk], [-xk, 1.0 + xk]], e);
     let eu = scale(&[[1.0 - xk, -xk], [xk, 1.0 + xk]], e);
-    let r = mul(&ku_kb_inv, &mul(&kb_kd, &ed));
-    let er = mul(&eu, &r);
-    let i_er = add(&I2, &er);
-    let kt = add(&c.kd, &mul_sym(&scale(&er, c.ku_minus_kd()), &inv(&i_er)));
+    // R = (K_u − K̃_b)⁻¹(K̃_b − K_d) E_d, B = (K_u − K̃_b)⁻¹(K_u − K_d) E_d.
+    let er = mul(&eu, &mul(&face.r0, &ed));
     *step = Step::Thick {
-        kb,
-        v_of_t: inv(&mul(&kt, &i_er)),
-        b: scale(&mul(&ku_kb_inv, &ed), c.ku_minus_kd()),
+        kb: face.kb,
+        // K̃_t (I + ER) = K_d (I + ER) + (K_u − K_d) ER.
+        v_of_t: inv(&add(&c.kd, &mul(&c.ku, &er))),
+        b: mul(&face.b0, &ed),
+        i_er: add(&I2, &er),
     };
-    kt
+    er
+}
+
+/// [`thick_step`] and the stiffness K̃_t above the layer.
+fn thick_up(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
+    let er = thick_step(c, x, face, step);
+    let i_er = add(&I2, &er);
+    add(&c.kd, &mul_sym(&scale(&er, c.ku_minus_kd()), &inv(&i_er)))
 }
 
 /// The state (ũ_b, t_b) at a layer's bottom from (ũ_t, t_t) at its top.
 fn down(step: &Step, ut: V2, t: V2) -> (V2, V2) {
     match step {
-        Step::Thick { kb, v_of_t, b } => {
+        Step::Thick { kb, v_of_t, b, .. } => {
             let ub = mulv(b, mulv(v_of_t, t));
             (ub, mulv(kb, ub))
         }
         Step::Thin { kb, x_inv, p, .. } => {
-            let [puu, put, ptu, ptt] = blocks(p);
+            let [puu, put, ptu, ptt] = p;
             let zero = [0.0, 0.0];
             let ub_solve = mulv_add_terms(x_inv, t, zero);
-            let (fwd, fwd_terms) = mulv_add_terms(&puu, ut, ut);
-            let (fwd2, fwd2_terms) = mulv_add_terms(&put, t, zero);
+            let (fwd, fwd_terms) = mulv_add_terms(puu, ut, ut);
+            let (fwd2, fwd2_terms) = mulv_add_terms(put, t, zero);
             let ub_fwd = (
                 [fwd[0] + fwd2[0], fwd[1] + fwd2[1]],
                 [fwd_terms[0] + fwd2_terms[0], fwd_terms[1] + fwd2_terms[1]],
             );
             let ub = pick(ub_solve, ub_fwd);
             let tb_stiff = mulv_add_terms(kb, ub, zero);
-            let (d1, d1_terms) = mulv_add_terms(&ptu, ut, t);
-            let (d2, d2_terms) = mulv_add_terms(&ptt, t, zero);
+            let (d1, d1_terms) = mulv_add_terms(ptu, ut, t);
+            let (d2, d2_terms) = mulv_add_terms(ptt, t, zero);
             let tb_fwd = (
                 [d1[0] + d2[0], d1[1] + d2[1]],
                 [d1_terms[0] + d2_terms[0], d1_terms[1] + d2_terms[1]],

@@ -17,9 +17,10 @@
 //! [`MAX_HALVINGS`] halvings there is no table and the caller uses the exact kernels.
 
 use super::table::{MAX_HALVINGS, MAX_SPAN, WIDTH, X_DIRECT, X_FAR};
-use super::{Bilayer, QD_BULK};
+use super::{Bilayer, Nodes, QD_BULK};
 use crate::cheb::{Interpolation, N, poly};
 use crate::prec::TABLE_RTOL;
+use crate::simd::with_avx2;
 use crate::special::exp_nonpositive;
 
 /// f_t², ((g_t + h)/2)² + (g_t − h)²/8 and (g_t − h)²/8 from f_t, h and g_t − h (all scaled
@@ -171,22 +172,120 @@ impl TangentialTable {
         v.map(|v| v * e)
     }
 
-    /// The square `k` (0: f_t², 1: ((g_t + h)/2)² + (g_t − h)²/8, 2: (g_t − h)²/8) alone at
-    /// x = qd with y = ln x: [`squares`](Self::squares)`(x, y)[k]` to the last bit (the same
-    /// operations), for the sums that need one or two of the three.
-    #[inline]
-    pub fn square(&self, k: usize, x: f64, y: f64) -> f64 {
-        if x > X_FAR {
-            return self.squares(x, y)[k];
+    /// s = (y − y0)/width, clamped at 0, and the panel p of y with the local variable
+    /// t = 2(s − p) − 1, as [`squares`](Self::squares) forms them.
+    #[inline(always)]
+    fn scaled(&self, y: f64) -> f64 {
+        ((y - self.y0) * self.inv_width).max(0.0)
+    }
+
+    /// For ascending nodes u (= ln q) at y = u + ln d: the panel p of the first and how many of
+    /// them lie in p, with b = −(2p + 1) for t = 2s + b (the same t as 2(s − p) − 1: s − p is
+    /// exact, so both round the same real number once), as [`super::KernelTable`]'s batches.
+    #[inline(always)]
+    fn run(&self, u: &[f64], ln_d: f64) -> (usize, usize, f64) {
+        let p = (self.scaled(u[0] + ln_d) as usize).min(self.panels.len() - 1);
+        let len = if p + 1 == self.panels.len() {
+            u.len()
+        } else {
+            let next = (p + 1) as f64;
+            u.partition_point(|&v| self.scaled(v + ln_d) < next).max(1)
+        };
+        (p, len, -2.0 * p as f64 - 1.0)
+    }
+
+    /// The contact integrals' slots under sliding at x = q d, y = u + ln d for ascending nodes:
+    /// `f2[j] += half_mu2·f_t²` (σ's kernel f² + μ²f_t²/2 from f²) and, with `friction`, the
+    /// squares ((g_t + h)/2)² + (g_t − h)²/8 and (g_t − h)²/8 into its two slices. The values
+    /// of [`squares`](Self::squares) to the last bit, with one panel's polynomials per run of
+    /// nodes in loops without branches and e^{−2x} formed once per node for all three (AVX2
+    /// where the CPU has it: `crate::simd`).
+    pub fn slots_many(
+        &self,
+        at: Nodes,
+        half_mu2: f64,
+        f2: &mut [f64],
+        friction: Option<[&mut [f64]; 2]>,
+    ) {
+        with_avx2!(
+            self.slots_many_avx2(at, half_mu2, f2, friction),
+            self.slots_many_in(at, half_mu2, f2, friction)
+        )
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn slots_many_avx2(
+        &self,
+        at: Nodes,
+        half_mu2: f64,
+        f2: &mut [f64],
+        friction: Option<[&mut [f64]; 2]>,
+    ) {
+        self.slots_many_in(at, half_mu2, f2, friction);
+    }
+
+    #[inline(always)]
+    fn slots_many_in(
+        &self,
+        Nodes { q, u, d, ln_d }: Nodes,
+        half_mu2: f64,
+        f2: &mut [f64],
+        mut friction: Option<[&mut [f64]; 2]>,
+    ) {
+        let near = q.partition_point(|&q| q * d <= X_FAR);
+        let mut j = 0;
+        while j < near {
+            let (p, len, b) = self.run(&u[j..near], ln_d);
+            let c = &self.panels[p];
+            let r = j..j + len;
+            let (q, u) = (&q[r.clone()], &u[r.clone()]);
+            let direct = p < self.direct;
+            let t = |v: f64| 2.0 * self.scaled(v + ln_d) + b;
+            let e = |q: f64| exp_nonpositive(-2.0 * (q * d));
+            match friction.as_mut() {
+                Some([along, across]) => {
+                    let out = f2[r.clone()]
+                        .iter_mut()
+                        .zip(&mut along[r.clone()])
+                        .zip(&mut across[r])
+                        .zip(q.iter().zip(u));
+                    if direct {
+                        for (((fo, ao), co), (_, &v)) in out {
+                            let t = t(v);
+                            *fo += half_mu2 * poly(&c[0], t);
+                            (*ao, *co) = (poly(&c[1], t), poly(&c[2], t));
+                        }
+                    } else {
+                        for (((fo, ao), co), (&q, &v)) in out {
+                            let (t, e) = (t(v), e(q));
+                            *fo += half_mu2 * (poly(&c[0], t) * e);
+                            (*ao, *co) = (poly(&c[1], t) * e, poly(&c[2], t) * e);
+                        }
+                    }
+                }
+                None => {
+                    let out = f2[r].iter_mut().zip(q.iter().zip(u));
+                    if direct {
+                        for (fo, (_, &v)) in out {
+                            *fo += half_mu2 * poly(&c[0], t(v));
+                        }
+                    } else {
+                        for (fo, (&q, &v)) in out {
+                            *fo += half_mu2 * (poly(&c[0], t(v)) * e(q));
+                        }
+                    }
+                }
+            }
+            j += len;
         }
-        let s = ((y - self.y0) * self.inv_width).max(0.0);
-        let p = (s as usize).min(self.panels.len() - 1);
-        let t = 2.0 * (s - p as f64) - 1.0;
-        let v = poly(&self.panels[p][k], t);
-        if p < self.direct {
-            return v;
+        for (k, &q) in q.iter().enumerate().skip(near) {
+            let [f_t2, along, across] = self.squares(q * d, 0.0);
+            f2[k] += half_mu2 * f_t2;
+            if let Some([a, c]) = friction.as_mut() {
+                (a[k], c[k]) = (along, across);
+            }
         }
-        v * exp_nonpositive(-2.0 * x)
     }
 }
 
@@ -195,21 +294,43 @@ mod tests {
     use super::*;
     use crate::layer::Elastic;
 
-    /// One square alone equals that entry of all three, to the last bit, in the direct panels,
-    /// the scaled ones and the far field, for a soft film on steel and a stiff film on rubber.
+    /// The batched slots equal [`TangentialTable::squares`] at every node to the last bit (the
+    /// σ slot as f² + (μ²/2)·f_t² formed in that order), with and without the friction slots, in
+    /// the dispatched build (AVX2 where the CPU has it) and the baseline, over direct panels,
+    /// scaled ones and the far field, for a soft film on steel and a stiff film on rubber.
     #[test]
-    fn one_square_is_the_entry_of_all_three() {
+    fn batched_slots_equal_the_squares() {
         let e = |y: f64, nu: f64| Elastic::new(y, nu).unwrap();
         for layers in [
             Bilayer::new(e(1e6, 0.5), e(2e11, 0.3)),
             Bilayer::new(e(1e9, 0.3), e(1e6, 0.5)),
         ] {
             let t = TangentialTable::new(layers, 1e-6, 200.0).unwrap();
-            for i in 0..=2000 {
-                let x = 1e-6 * 10f64.powf(8.5 * f64::from(i) / 2000.0);
-                let all = t.squares(x, x.ln());
-                for (k, v) in all.iter().enumerate() {
-                    assert_eq!(t.square(k, x, x.ln()).to_bits(), v.to_bits(), "{x} {k}");
+            let d = 1e-5;
+            let q: Vec<f64> = (0..2000)
+                .map(|i| 0.1 * 10f64.powf(8.5 * f64::from(i) / 2000.0))
+                .collect();
+            let u: Vec<f64> = q.iter().map(|q| q.ln()).collect();
+            let at = Nodes {
+                q: &q,
+                u: &u,
+                d,
+                ln_d: d.ln(),
+            };
+            let f2: Vec<f64> = (0..q.len()).map(|i| 1e-3 * f64::from(i as u32)).collect();
+            let half_mu2 = 0.5 * 0.7 * 0.7;
+            let mut got = [(); 7].map(|_| f2.clone());
+            let [fa, along, across, fb, along_b, across_b, fc] = &mut got;
+            t.slots_many(at, half_mu2, fa, Some([along, across]));
+            t.slots_many_in(at, half_mu2, fb, Some([along_b, across_b]));
+            t.slots_many(at, half_mu2, fc, None);
+            for (j, (&q, &u)) in q.iter().zip(&u).enumerate() {
+                let [f_t2, a, c] = t.squares(q * d, u + d.ln());
+                let want = [f2[j] + half_mu2 * f_t2, a, c];
+                // got: the three slots twice (dispatched, baseline), then σ's alone.
+                for (k, slot) in got.iter().enumerate() {
+                    let w = want[k % 3];
+                    assert_eq!(slot[j].to_bits(), w.to_bits(), "x = {} slot {k}", q * d);
                 }
             }
         }

@@ -2,9 +2,8 @@
 //! nominal check of a scene with that corner's values written out; ranges of zero width; the
 //! d_min range; bad ranges; the materials listing and every output format.
 
-use crate::common::{json, run};
+use crate::common::{check_json, json, run, write_text};
 use serde_json::Value;
-use std::path::Path;
 
 /// NBR on carbon steel with a rubber-tearing bond: every property has a library range.
 const SCENE: &str = "\
@@ -25,21 +24,6 @@ material = \"chemlok-type\"
 [load]
 pressure = \"2 MPa\"
 ";
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p.display().to_string()
-}
-
-fn check_json(args: &[&str]) -> Value {
-    let mut argv = vec!["check"];
-    argv.extend(args);
-    argv.extend(["--format", "json"]);
-    let o = run(&argv);
-    assert!(o.status.code().is_some_and(|c| c < 2), "{argv:?}: {o:?}");
-    json(&o)
-}
 
 /// The scene with the governing corner's values written out as explicit numbers.
 fn corner_scene(robust: &Value) -> String {
@@ -76,7 +60,7 @@ fn check_named<'a>(checks: &'a Value, name: &str) -> &'a Value {
 #[test]
 fn the_robust_verdict_is_the_nominal_verdict_at_the_worst_corner() {
     let dir = tempfile::tempdir().unwrap();
-    let scene = write(dir.path(), "s.toml", SCENE);
+    let scene = write_text(dir.path(), "s.toml", SCENE);
     let v = check_json(&[&scene, "--robust"]);
     let r = &v["robust"];
     assert_eq!(r["corners"], 16);
@@ -95,7 +79,7 @@ fn the_robust_verdict_is_the_nominal_verdict_at_the_worst_corner() {
     for thickness in ["25um", between.as_str()] {
         let v = check_json(&[&scene, "--robust", "--thickness", thickness]);
         let r = &v["robust"];
-        let explicit = write(dir.path(), "corner.toml", &corner_scene(r));
+        let explicit = write_text(dir.path(), "corner.toml", &corner_scene(r));
         let n = check_json(&[&explicit, "--thickness", thickness]);
         assert_eq!(r["verdict"], n["verdict"], "{thickness}");
         let governing = r["governing_check"].as_str().unwrap();
@@ -136,7 +120,7 @@ fn ranges_of_zero_width_give_the_nominal_answer() {
         .replace("material = \"nbr\"\n", "youngs_modulus = \"6 MPa\"\npoisson_ratio = 0.4995\nyoungs_modulus_range = [\"6 MPa\", \"6 MPa\"]\n")
         .replace("material = \"carbon-steel\"\n", "youngs_modulus = \"200 GPa\"\npoisson_ratio = 0.29\nyield_strength = \"250 MPa\"\n")
         .replace("material = \"chemlok-type\"\n", "shear_strength = \"5 MPa\"\n");
-    let scene = write(dir.path(), "s.toml", &text);
+    let scene = write_text(dir.path(), "s.toml", &text);
     let v = check_json(&[&scene, "--robust"]);
     let r = &v["robust"];
     assert_eq!(r["ranges"], serde_json::json!([]));
@@ -189,7 +173,7 @@ fn bad_ranges_are_errors_naming_the_file_line_and_key() {
         ),
     ];
     for (from, to, line, needle) in cases {
-        let scene = write(dir.path(), "bad.toml", &SCENE.replace(from, to));
+        let scene = write_text(dir.path(), "bad.toml", &SCENE.replace(from, to));
         let o = run(&["check", &scene, "--robust"]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{err}");
@@ -202,7 +186,7 @@ fn bad_ranges_are_errors_naming_the_file_line_and_key() {
         );
         assert!(err.contains(needle), "{err}");
     }
-    let scene = write(dir.path(), "s.toml", SCENE);
+    let scene = write_text(dir.path(), "s.toml", SCENE);
     let o = run(&[
         "check",
         &scene,
@@ -255,7 +239,7 @@ fn the_materials_listing_shows_the_ranges_and_their_sources() {
 #[test]
 fn every_format_reports_the_robust_verdict_beside_the_nominal_one() {
     let dir = tempfile::tempdir().unwrap();
-    let scene = write(
+    let scene = write_text(
         dir.path(),
         "s.toml",
         &SCENE.replace("[load]\n", "[criteria]\nrobust = true\n[load]\n"),

@@ -3,7 +3,7 @@
 //! the library's, the robust d_min range's ends are the nominal d_min of the scenes with each
 //! end written out, and a bad range is an error at its line (exit 2).
 
-use crate::common::{json, run};
+use crate::common::{check_json, run, write_text};
 use serde_json::Value;
 use std::path::Path;
 
@@ -38,21 +38,6 @@ yield_strength = \"250 MPa\"
 pressure = \"2 MPa\"
 ";
 
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p.display().to_string()
-}
-
-fn check_json(args: &[&str]) -> Value {
-    let mut argv = vec!["check"];
-    argv.extend(args);
-    argv.extend(["--format", "json"]);
-    let o = run(&argv);
-    assert!(o.status.code().is_some_and(|c| c < 2), "{argv:?}: {o:?}");
-    json(&o)
-}
-
 /// `text` with `line` added after the first occurrence of `after`.
 fn with(text: &str, after: &str, line: &str) -> String {
     text.replacen(after, &format!("{after}{line}\n"), 1)
@@ -60,7 +45,7 @@ fn with(text: &str, after: &str, line: &str) -> String {
 
 /// The nominal d_min of `text` (m).
 fn d_min(dir: &Path, text: &str) -> f64 {
-    let scene = write(dir, "nominal.toml", text);
+    let scene = write_text(dir, "nominal.toml", text);
     check_json(&[&scene])["min_thickness_m"].as_f64().unwrap()
 }
 
@@ -109,7 +94,7 @@ fn a_layer_range_moves_the_robust_d_min_range_to_its_ends() {
         ),
     ];
     for (after, range, key, ends) in cases {
-        let scene = write(dir.path(), "s.toml", &with(SCENE, after, range));
+        let scene = write_text(dir.path(), "s.toml", &with(SCENE, after, range));
         let r = &check_json(&[&scene, "--robust"])["robust"];
         let ranges = r["ranges"].as_array().unwrap();
         assert_eq!(ranges.len(), 1, "{key}: {ranges:?}");
@@ -155,8 +140,8 @@ fn a_layer_range_replaces_the_librarys() {
         "bond = \"chemlok-type\"\n",
         "shear_strength_range = [\"5 MPa\", \"7 MPa\"]",
     );
-    let wide = check_json(&[&write(dir.path(), "a.toml", &library), "--robust"]);
-    let narrow = check_json(&[&write(dir.path(), "b.toml", &narrowed), "--robust"]);
+    let wide = check_json(&[&write_text(dir.path(), "a.toml", &library), "--robust"]);
+    let narrow = check_json(&[&write_text(dir.path(), "b.toml", &narrowed), "--robust"]);
     let span = |v: &Value, key: &str| {
         let r = v["robust"]["ranges"]
             .as_array()
@@ -225,7 +210,7 @@ fn bad_layer_ranges_are_errors_naming_the_file_line_and_key() {
     for (after, range, needle) in cases {
         let text = with(SCENE, after, range);
         let line = text.lines().position(|l| l == range).unwrap() + 1;
-        let scene = write(dir.path(), "bad.toml", &text);
+        let scene = write_text(dir.path(), "bad.toml", &text);
         let o = run(&["check", &scene, "--robust"]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{err}");

@@ -3,7 +3,7 @@
 //! the robust verdict is the nominal verdict of the scene with the worst corner written out;
 //! ranges of zero width give the nominal answer; the d_min range brackets the nominal d_min.
 
-use crate::common::{json, run};
+use crate::common::{check_json, run, write_text};
 use coatcheck::check::robust::{Param, judge_robust};
 use coatcheck::check::stack::{StackDesign, StackLayer};
 use coatcheck::check::stack_robust::{self, StackParam};
@@ -13,7 +13,6 @@ use coatcheck::material::{Library, Span};
 use coatcheck::prec::Settings;
 use coatcheck::psd::Spectrum;
 use serde_json::Value;
-use std::path::Path;
 
 /// NBR over an epoxy primer (its moduli given, so without ranges) on carbon steel: the
 /// rubber's and the steel's E and ν have library ranges (16 corners), and both bonds' and the
@@ -42,21 +41,6 @@ material = \"carbon-steel\"
 [load]
 pressure = \"2 MPa\"
 ";
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p.display().to_string()
-}
-
-fn check_json(args: &[&str]) -> Value {
-    let mut argv = vec!["check"];
-    argv.extend(args);
-    argv.extend(["--format", "json"]);
-    let o = run(&argv);
-    assert!(o.status.code().is_some_and(|c| c < 2), "{argv:?}: {o:?}");
-    json(&o)
-}
 
 /// The scene with the governing corner's values written out as explicit numbers.
 fn corner_scene(robust: &Value) -> String {
@@ -102,7 +86,7 @@ fn check_at<'a>(checks: &'a Value, name: &str, at: &str) -> &'a Value {
 #[test]
 fn the_robust_stack_verdict_is_the_nominal_verdict_at_the_worst_corner() {
     let dir = tempfile::tempdir().unwrap();
-    let scene = write(dir.path(), "s.toml", SCENE);
+    let scene = write_text(dir.path(), "s.toml", SCENE);
     let v = check_json(&[&scene, "--robust"]);
     let schema: Value = serde_json::from_str(coatcheck::report::CHECK_SCHEMA).unwrap();
     let e = crate::schema::errors(&schema, &v);
@@ -155,10 +139,10 @@ fn the_robust_stack_verdict_is_the_nominal_verdict_at_the_worst_corner() {
             "thickness = \"25 um\"",
             &format!("thickness = \"{thickness}\""),
         );
-        let scene = write(dir.path(), "t.toml", &given);
+        let scene = write_text(dir.path(), "t.toml", &given);
         let v = check_json(&[&scene, "--robust"]);
         let r = &v["robust"];
-        let explicit = write(
+        let explicit = write_text(
             dir.path(),
             "corner.toml",
             &corner_scene(r).replace(
@@ -232,7 +216,7 @@ fn ranges_of_zero_width_give_the_nominal_stack_answer() {
             "youngs_modulus = \"200 GPa\"\npoisson_ratio = 0.29\nyield_strength = \"250 MPa\"\n\
              youngs_modulus_range = [\"200 GPa\", \"200 GPa\"]\n",
         );
-    let scene = write(dir.path(), "s.toml", &text);
+    let scene = write_text(dir.path(), "s.toml", &text);
     let v = check_json(&[&scene, "--robust"]);
     let r = &v["robust"];
     assert_eq!(r["ranges"], serde_json::json!([]));

@@ -37,7 +37,7 @@
 //! (`tests/data/stack_tangential_ref.py`) every value whose magnitude is at least 1e−30 is within
 //! [`super::STACK_RTOL`] relative, g_t,k near its zeros in absolute terms (tests/it/stack.rs).
 
-use super::{EMPTY_STEP, M2, MAX_LAYERS, Stack, Step, V2, blocks, inv, mulv, scale, scale_v};
+use super::{EMPTY_STEP, M2, MAX_LAYERS, Stack, Step, V2, mulv, scale_v};
 use serde::Serialize;
 
 /// g_t,k, f_t,k and h_k at one interface.
@@ -64,9 +64,9 @@ impl Stack {
         debug_assert!(q >= 0.0 && out.len() == self.layers.len());
         let n = self.layers.len();
         let mut steps = [EMPTY_STEP; MAX_LAYERS];
-        let k_pa = self.up(q, 0, self.substrate_stiffness(), &mut steps[..n]);
+        self.up_to_top(q, self.substrate_stiffness(), &mut steps[..n]);
         let mut t = [[0.0; 2]; MAX_LAYERS];
-        self.tracked_pass(k_pa, &steps[..n], [1.0, 0.0], &mut t[..n]);
+        self.tracked_pass(&steps[..n], [1.0, 0.0], &mut t[..n]);
         let mut h = [0.0; MAX_LAYERS];
         self.antiplane_into(q, &mut h[..n]);
         for ((o, t), h) in out.iter_mut().zip(&t).zip(&h) {
@@ -158,12 +158,12 @@ fn pick_tracked(a: Tracked, b: Tracked) -> Tracked {
 impl Stack {
     /// The parent's downward pass of the top traction `t0` (module doc): the traction (T, Σ) at
     /// every interface into `out`, each thin layer's forms picked by their tracked errors.
-    fn tracked_pass(&self, k_pa: M2, steps: &[Step], t0: V2, out: &mut [V2]) {
+    fn tracked_pass(&self, steps: &[Step], t0: V2, out: &mut [V2]) {
         let top = &self.consts[0];
         let t = Tracked { v: t0, e: [0.0; 2] };
         let u0 = match &steps[0] {
             Step::Thin { x_inv, y, .. } => apply(y, apply(x_inv, t)),
-            Step::Thick { .. } => apply(&inv(&scale(&k_pa, top.inv_two_g)), t),
+            Step::Thick { v_of_t, i_er, .. } => apply(i_er, apply(v_of_t, t)),
         };
         let mut t = t;
         // Displacement times q (dimensionless): layer k's ũ is 2G_k times this.
@@ -188,14 +188,14 @@ fn scaled(x: Tracked, s: f64) -> Tracked {
 /// The state (ũ_b, t_b) at a layer's bottom from (ũ_t, t_t) at its top, with error bounds.
 fn tracked_down(step: &Step, ut: Tracked, t: Tracked) -> (Tracked, Tracked) {
     match step {
-        Step::Thick { kb, v_of_t, b } => {
+        Step::Thick { kb, v_of_t, b, .. } => {
             let ub = apply(b, apply(v_of_t, t));
             (ub, apply(kb, ub))
         }
         Step::Thin { kb, x_inv, p, .. } => {
-            let [puu, put, ptu, ptt] = blocks(p);
-            let ub = pick_tracked(apply(x_inv, t), forward(ut, &puu, ut, &put, t));
-            let tb_fwd = forward(t, &ptu, ut, &ptt, t);
+            let [puu, put, ptu, ptt] = p;
+            let ub = pick_tracked(apply(x_inv, t), forward(ut, puu, ut, put, t));
+            let tb_fwd = forward(t, ptu, ut, ptt, t);
             (ub, pick_tracked(apply(kb, ub), tb_fwd))
         }
     }

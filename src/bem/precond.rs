@@ -1,0 +1,209 @@
+//! Preconditioner of the periodic solver's conjugate gradients: the inverse of the influence
+//! operator on the full grid, a Fourier multiplier 1/K(q), applied to the gap on the contact set
+//! (an FFT-based preconditioner in the sense of Vollebregt's bound-constrained CG, JOTA 162,
+//! 2014, 931–953, and J. Comput. Phys. 257, 2014, 333–351).
+//!
+//! With K(q) ∝ 1/q the unpreconditioned operator's condition number on a contact patch grows
+//! with the patch size in pixels, and so do the iterations; 1/K(q) undoes that scaling, so the
+//! preconditioned operator is close to the identity on the interior of each patch. The direction
+//! is z = P₀ M P g: the gap g on the contact set (P), filtered by M = 1/K (q = 0 excluded), then
+//! made mean-free on the contact set (P₀: the load is fixed, so directions carry no net force).
+//! M is symmetric and non-negative, and P₀ M P₀ on the contact set too, so Σ g·z ≥ 0 and the
+//! Fletcher–Reeves coefficient β = Σ g·z / Σ g'·z' of preconditioned CG applies. A pixel
+//! re-admitted to the contact is given the pressure −step·M₀·g, M₀ being M's diagonal (its
+//! real-space value at zero offset), so that re-admission is in the units of the step.
+
+use super::fft::Fft2;
+use super::passes::GapSums;
+use super::{half_spectrum_weight, sum};
+
+/// The multiplier M = 1/K on the half-spectrum grid (same layout as the kernel), including the
+/// 1/N of the inverse FFT, and its real-space diagonal.
+pub(super) struct Preconditioner {
+    multiplier: Vec<f64>,
+    ny: usize,
+    diagonal: f64,
+}
+
+impl Preconditioner {
+    /// From the kernel grid of the solver (K(q)/N on the transposed half spectrum, 0 at q = 0).
+    pub(super) fn new(kernel: &[f64], nx: usize, ny: usize) -> Self {
+        let inv_n = 1.0 / (nx * ny) as f64;
+        let multiplier: Vec<f64> = kernel
+            .iter()
+            .map(|&k| if k > 0.0 { inv_n * inv_n / k } else { 0.0 })
+            .collect();
+        let diagonal = multiplier
+            .chunks_exact(ny)
+            .enumerate()
+            .map(|(kx, col)| half_spectrum_weight(kx, nx) * col.iter().sum::<f64>())
+            .sum();
+        Self {
+            multiplier,
+            ny,
+            diagonal,
+        }
+    }
+
+    /// M's diagonal (Pa/m): the pressure per unit gap of a single pixel.
+    pub(super) fn diagonal(&self) -> f64 {
+        self.diagonal
+    }
+
+    /// z ← M (P g), using `scratch` for P g; returns (Σ_c g·(z − z̄), z̄) with z̄ the mean of z
+    /// on the contact set, i.e. the preconditioned residual's product with the gap and the shift
+    /// that makes it mean-free there. The gap g = graw − ḡ is masked in the forward row pass of
+    /// the convolution, the sums are formed in its inverse row pass (per row, in row order).
+    pub(super) fn apply(
+        &self,
+        plan: &mut Fft2,
+        (graw, contact, sums): (&[f64], &[bool], &GapSums),
+        scratch: &mut [f64],
+        z: &mut [f64],
+    ) -> (f64, f64) {
+        let (m, ny, nx, gbar) = (&self.multiplier, self.ny, plan.nx(), sums.gbar);
+        let (_, rows) = plan.filter_rows(
+            scratch,
+            |y, row| {
+                let o = y * nx;
+                for ((si, gr), c) in row
+                    .iter_mut()
+                    .zip(&graw[o..o + nx])
+                    .zip(&contact[o..o + nx])
+                {
+                    *si = if *c { gr - gbar } else { 0.0 };
+                }
+                [0.0; 0]
+            },
+            z,
+            |kx, col| {
+                for (c, k) in col.iter_mut().zip(&m[kx * ny..(kx + 1) * ny]) {
+                    *c *= *k;
+                }
+            },
+            |_| {
+                |y, grow: &[f64], zrow: &mut [f64]| {
+                    // grow is the masked gap (0 off the contact set).
+                    let (mut gz, mut zs, mut gs) = (0.0, 0.0, 0.0);
+                    let flags = &contact[y * nx..(y + 1) * nx];
+                    for ((zi, gi), c) in zrow.iter().zip(grow).zip(flags) {
+                        if *c {
+                            gz += gi * zi;
+                            zs += zi;
+                            gs += gi;
+                        }
+                    }
+                    [gz, zs, gs]
+                }
+            },
+        );
+        let zbar = sum(&rows, 1) / sums.n_c;
+        (sum(&rows, 0) - zbar * sum(&rows, 2), zbar)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bem::{Surface, kernel_grid};
+    use std::f64::consts::PI;
+
+    /// A 24 × 16 grid with unequal pixels and the half-space compliance 2/(q E*).
+    fn setup() -> (usize, usize, Vec<f64>, impl Fn(f64) -> f64) {
+        let (nx, ny, dx, dy) = (24, 16, 1e-6, 1.5e-6);
+        let s = Surface::new(vec![0.0; nx * ny], nx, ny, dx, dy).unwrap();
+        let compliance = |q: f64| 2.0 / (q * 3e6);
+        let kernel = kernel_grid(&s, &compliance).unwrap();
+        (nx, ny, kernel, compliance)
+    }
+
+    /// Gap statistics of a full contact set of `n` points with ḡ = 0 (what `apply` reads).
+    fn all(n: usize) -> GapSums {
+        GapSums {
+            n_c: n as f64,
+            gbar: 0.0,
+            g2: 0.0,
+            pen: 0.0,
+            gt: 0.0,
+        }
+    }
+
+    #[test]
+    fn on_the_full_contact_it_inverts_the_influence_operator() {
+        // One oblique grid mode g = cos(q·x) with everything in contact: K z must give g back
+        // (z = g / K(q) exactly, the mean being 0 already).
+        let (nx, ny, kernel, compliance) = setup();
+        let (kx, ky) = (3.0, 2.0);
+        let q = 2.0 * PI * (kx / (nx as f64 * 1e-6)).hypot(ky / (ny as f64 * 1.5e-6));
+        let g: Vec<f64> = (0..nx * ny)
+            .map(|i| {
+                let (x, y) = ((i % nx) as f64, (i / nx) as f64);
+                1e-9 * (2.0 * PI * (kx * x / nx as f64 + ky * y / ny as f64)).cos()
+            })
+            .collect();
+        let contact = vec![true; nx * ny];
+        let pre = Preconditioner::new(&kernel, nx, ny);
+        let mut plan = Fft2::new(nx, ny);
+        let (mut scratch, mut z) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
+        let (gz, zbar) = pre.apply(
+            &mut plan,
+            (&g, &contact, &all(nx * ny)),
+            &mut scratch,
+            &mut z,
+        );
+        let peak = 1e-9 / compliance(q);
+        assert!(zbar.abs() < 1e-12 * peak, "{zbar:e}");
+        for (zi, gi) in z.iter().zip(&g) {
+            assert!((zi - gi / compliance(q)).abs() < 1e-12 * peak);
+        }
+        let expect: f64 = g.iter().map(|gi| gi * gi / compliance(q)).sum();
+        assert!((gz - expect).abs() < 1e-12 * expect, "{gz:e} vs {expect:e}");
+    }
+
+    #[test]
+    fn the_diagonal_is_the_response_at_a_unit_gap_pixel() {
+        // M applied to a unit gap at one pixel, read at that pixel, is the diagonal; the direct
+        // sum (1/N) Σ_q 1/K(q) over the full spectrum gives it independently.
+        let (nx, ny, kernel, compliance) = setup();
+        let pre = Preconditioner::new(&kernel, nx, ny);
+        let mut direct = 0.0;
+        for ky in 0..ny {
+            for kx in 0..nx {
+                if kx == 0 && ky == 0 {
+                    continue;
+                }
+                let sx = if kx <= nx / 2 {
+                    kx as f64
+                } else {
+                    kx as f64 - nx as f64
+                };
+                let sy = if ky <= ny / 2 {
+                    ky as f64
+                } else {
+                    ky as f64 - ny as f64
+                };
+                let q = 2.0 * PI * (sx / (nx as f64 * 1e-6)).hypot(sy / (ny as f64 * 1.5e-6));
+                direct += 1.0 / compliance(q);
+            }
+        }
+        direct /= (nx * ny) as f64;
+        assert!((pre.diagonal() - direct).abs() < 1e-12 * direct);
+        let j = 5 * nx + 7;
+        let mut g = vec![0.0; nx * ny];
+        g[j] = 1.0;
+        let contact = vec![true; nx * ny];
+        let mut plan = Fft2::new(nx, ny);
+        let (mut scratch, mut z) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
+        pre.apply(
+            &mut plan,
+            (&g, &contact, &all(nx * ny)),
+            &mut scratch,
+            &mut z,
+        );
+        assert!(
+            (z[j] - direct).abs() < 1e-12 * direct,
+            "{} vs {direct}",
+            z[j]
+        );
+    }
+}
