@@ -81,9 +81,21 @@ impl Basis {
         epsilon: f64,
         utilisation: impl FnMut(f64) -> Result<Utilisation, Error>,
     ) -> Result<MinThickness, Error> {
+        self.min_thickness_above(friction, epsilon, 0.0, utilisation)
+    }
+
+    /// [`Self::min_thickness`] for a utilisation that is at least `floor` at every thickness
+    /// (the friction floor, [`super::min_thickness`]: it steers the scan's widened steps).
+    pub fn min_thickness_above(
+        &self,
+        friction: f64,
+        epsilon: f64,
+        floor: f64,
+        utilisation: impl FnMut(f64) -> Result<Utilisation, Error>,
+    ) -> Result<MinThickness, Error> {
         let (lo, hi) = self.scan_range();
         let spread = peak_spread(friction, epsilon);
-        super::min_thickness::search_min_thickness_spread(lo, hi, spread, utilisation)
+        super::min_thickness::search_min_thickness_spread(lo, hi, spread, floor, utilisation)
     }
 
     /// Where the theory is strained ([`super`], "Validity"): few long waves carrying the

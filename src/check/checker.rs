@@ -245,7 +245,24 @@ impl Checker {
     fn search(&self, how: Peak) -> Result<MinThickness, Error> {
         let d = &self.design;
         self.basis
-            .min_thickness(d.friction, d.criteria.epsilon, |t| self.utilisation(t, how))
+            .min_thickness_above(d.friction, d.criteria.epsilon, self.friction_floor(), |t| {
+                self.utilisation(t, how)
+            })
+    }
+
+    /// The utilisation no thickness goes below under sliding ([`super::min_thickness`], "The
+    /// friction floor"): the mean shear μp0 over the bond limit when the bond-shear check runs
+    /// under the vector rule (the peak |τ| exceeds the mean), else 0.
+    fn friction_floor(&self) -> f64 {
+        let d = &self.design;
+        if d.criteria.checks.bond_shear
+            && d.friction > 0.0
+            && self.shear_tail() == ShearTail::Vector
+        {
+            d.friction * d.pressure / self.limit(d.bond_strength)
+        } else {
+            0.0
+        }
     }
 
     /// The full check at the design's thickness: all quantities, the enabled checks, d_min.

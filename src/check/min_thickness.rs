@@ -113,6 +113,20 @@
 //! [`THICK_SLACK`] is left to the one-step read: from a level within 1e-5 of τ* it falls short
 //! by at most 2.3e-11 (same test), far inside the slack's margin over the A/A0 drift of step 1.
 //!
+//! The friction floor. Under sliding the bond-shear peak never falls below the mean shear
+//! m = μp0 (τ* > m, above), however thick the film: its utilisation is a floor u_f = m/limit,
+//! the same at every d, plus an excess that grows as the film thins. Where the floor makes up
+//! most of u, step 2's log-linear extrapolation of u itself sees a growth rate near 0 (so
+//! [`MIN_GROWTH`]) and then a steep turn: on a measured PSD whose u sits at u_f = 0.05 for two
+//! decades, a widened step lands above its threshold and is redone with base steps. So the
+//! search is given the floor, and where u < 2u_f at both of the last two samples (and above
+//! u_f) it extrapolates the excess u − u_f log-linearly instead, at the excess's growth rate
+//! clamped to [[`MIN_GROWTH`], [`MAX_EXCESS_GROWTH`]], aiming u_f + excess at the step's
+//! target ([`scan_step`]); elsewhere the plain rule holds. The floor only chooses step
+//! lengths: every decision (a widened step's threshold, the guard, pass or fail) still
+//! compares u itself, so the argument above holds whatever floor is given (test
+//! `the_friction_floor_moves_no_crossing`).
+//!
 //! Each evaluation during the search requests only what the enabled checks need (bond-shear:
 //! τ_rms; substrate-yield: A/A0 and σ_rms at the interface), reusing one [`crate::contact::Engine`] per spectrum.
 //!
@@ -132,17 +146,20 @@ pub fn search_min_thickness(
     hi: f64,
     util: impl FnMut(f64) -> Result<Utilisation, Error>,
 ) -> Result<MinThickness, Error> {
-    search_min_thickness_spread(lo, hi, 1.0, util)
+    search_min_thickness_spread(lo, hi, 1.0, 0.0, util)
 }
 
 /// [`search_min_thickness`] for a utilisation whose peak may fall, between a failing point and
 /// the better end of a widened step, by `spread` ≥ 1 more than its rms does (module docs,
 /// "Under sliding"): each widened step's threshold is lowered to at most
-/// level/(√2·spread). A spread up to 1.178 leaves the thresholds as they are.
+/// level/(√2·spread). A spread up to 1.178 leaves the thresholds as they are. `floor` ≥ 0 is a
+/// utilisation no thickness goes below (module docs, "The friction floor"; 0 for none): it
+/// steers the widened steps' lengths only.
 pub fn search_min_thickness_spread(
     lo: f64,
     hi: f64,
     spread: f64,
+    floor: f64,
     mut util: impl FnMut(f64) -> Result<Utilisation, Error>,
 ) -> Result<MinThickness, Error> {
     let mut evaluations = 0usize;
@@ -198,7 +215,7 @@ pub fn search_min_thickness_spread(
         let above = samples.len().checked_sub(2).map(|i| samples[i]);
         let ((step, below), floor) = match pending {
             Some(p) => ((h, f64::INFINITY), p.x),
-            None => (scan_step(above, cur, h, spread), x_lo),
+            None => (scan_step(above, cur, h, spread, floor), x_lo),
         };
         let x = (cur.x - step).max(floor);
         let next = match pending.take_if(|p| p.x == x) {
@@ -286,24 +303,54 @@ type Util<'a> = dyn FnMut(f64) -> Result<Sample, Error> + 'a;
 
 /// The scan's next step down in ln d after `cur` (module docs, step 2) and the utilisation
 /// its end must stay below (infinite for the base step `h`): the longest of the [`WIDE_STEPS`]
-/// over which the log-linear extrapolation of u (growth rate of ln u per unit of ln d from the
-/// last two samples, at least [`MIN_GROWTH`]) stays below [`WIDE_AIM`] of the step's
-/// threshold ([`wide_threshold`] at `spread`), else `h`.
-fn scan_step(above: Option<Sample>, cur: Sample, h: f64, spread: f64) -> (f64, f64) {
+/// over which the extrapolated u stays below [`WIDE_AIM`] of the step's threshold
+/// ([`wide_threshold`] at `spread`), else `h`. u is extrapolated log-linearly in ln d, at the
+/// growth rate from the last two samples (at least [`MIN_GROWTH`]); where both lie between
+/// `floor` and twice it, as the floor plus the excess u − floor extrapolated so (module docs,
+/// "The friction floor").
+fn scan_step(above: Option<Sample>, cur: Sample, h: f64, spread: f64, floor: f64) -> (f64, f64) {
+    let near_floor = |s: Sample| s.u > floor && s.u < 2.0 * floor;
+    match above {
+        Some(a) if near_floor(a) && near_floor(cur) => {
+            extrapolated_step(above, cur, h, spread, floor)
+        }
+        _ => extrapolated_step(above, cur, h, spread, 0.0),
+    }
+}
+
+/// [`scan_step`]'s step for u extrapolated as `floor` (below both samples) plus the excess
+/// u − floor, log-linear in ln d; with a floor > 0, at a growth rate of at most
+/// [`MAX_EXCESS_GROWTH`].
+fn extrapolated_step(
+    above: Option<Sample>,
+    cur: Sample,
+    h: f64,
+    spread: f64,
+    floor: f64,
+) -> (f64, f64) {
     let base = (h, f64::INFINITY);
+    let excess = cur.u - floor;
     let rate = match above {
-        _ if cur.u <= 0.0 => return base,
+        _ if excess <= 0.0 => return base,
         None => MIN_GROWTH,
-        Some(a) if a.u > 0.0 => ((cur.u / a.u).ln() / (a.x - cur.x)).max(MIN_GROWTH),
+        Some(a) if a.u > floor => {
+            let rate = ((excess / (a.u - floor)).ln() / (a.x - cur.x)).max(MIN_GROWTH);
+            if floor > 0.0 {
+                rate.min(MAX_EXCESS_GROWTH)
+            } else {
+                rate
+            }
+        }
         Some(_) => return base,
     };
     WIDE_STEPS
         .iter()
         .map(|w| (w, wide_threshold(w, spread)))
-        .filter(|&(_, below)| cur.u < below)
+        .filter(|&(_, below)| cur.u < below && WIDE_AIM * below > floor)
         .map(|(w, below)| {
             let longest = w.decades * std::f64::consts::LN_10;
-            (((WIDE_AIM * below / cur.u).ln() / rate).min(longest), below)
+            let aim = WIDE_AIM * below - floor;
+            (((aim / excess).ln() / rate).min(longest), below)
         })
         .fold(base, |best, s| if s.0 > best.0 { s } else { best })
 }

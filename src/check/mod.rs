@@ -96,6 +96,11 @@ pub const WIDE_STEPS: [WideStep; 2] = [
 pub const WIDE_AIM: f64 = 0.7;
 /// The growth rate of ln u per unit of ln d (thinner) assumed at least when widening a step.
 pub const MIN_GROWTH: f64 = 1.0;
+/// The growth rate of ln(u − floor) per unit of ln d assumed at most when widening a step
+/// from the friction floor ([`min_thickness`], "The friction floor"): the secant between two
+/// samples on the thick side, where the excess still falls exponentially in q_L·d, can be
+/// several times the power law it follows on the thin side.
+pub const MAX_EXCESS_GROWTH: f64 = 3.0;
 /// The narrow-band guard stops when the parabola through its best three points promises less
 /// than this fraction of the headroom 1 − u to failure.
 pub const GUARD_RESOLVED: f64 = 0.1;
