@@ -196,7 +196,11 @@ impl ShearVector {
                 hi = x;
             }
             let mut next = phi_step(at, x, phi_eps).unwrap_or(x - f / at.slope);
-            if !(next > lo && next < hi) {
+            // A step within the tolerance is the last one, taken as it is: x may be an end of
+            // the bracket (f rounds to its sign there), and the step just across it is not a
+            // reason to bisect.
+            let last = (next - x).abs() <= PEAK_RTOL * x;
+            if !(last || next > lo && next < hi) {
                 next = 0.5 * (lo + hi);
             }
             step = (next - x).abs();
