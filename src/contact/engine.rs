@@ -38,9 +38,9 @@ struct Shared {
     /// The kernel table of the last material pair evaluated (d-independent; rebuilt, wider, when
     /// a thickness needs q·d outside it).
     table: Mutex<Option<Arc<KernelTable>>>,
-    /// The friction kernels' table over the same pair and range as `table` (sliding only),
-    /// keyed by the pair and the range of the static table it was built for (`None` when the
-    /// kernels were not resolved: not tried again).
+    /// The friction kernels' table covering the pair and range of `table` (sliding only), with
+    /// the pair and the range of the static table it was last asked for (`None` when the
+    /// kernels were not resolved there: not tried again for that range).
     tangential: Mutex<Option<TangentialEntry>>,
     /// The kernels of the last layer stack evaluated, per node (`contact::stack`).
     stack: Mutex<Option<StackCache>>,
@@ -92,8 +92,10 @@ impl Engine {
         }
     }
 
-    /// The friction kernels' table over the pair and range of the static `table`, from the
-    /// cache or newly built (so that it is the same for every thickness the static one serves).
+    /// The friction kernels' table covering the pair and range of the static `table`: the
+    /// cached one, extended where the static table has grown ([`TangentialTable::extended`]:
+    /// the panels it has are kept, so every thickness the static table serves sees the same
+    /// friction kernels), or newly built.
     fn tangential_for(&self, table: &KernelTable) -> Option<Arc<TangentialTable>> {
         let mut cache = self
             .shared
@@ -101,13 +103,13 @@ impl Engine {
             .lock()
             .unwrap_or_else(|e| e.into_inner());
         let (layers, range) = (*table.layers(), table.range());
-        if let Some((_, _, t)) = cache
-            .as_ref()
-            .filter(|(l, r, _)| *l == layers && *r == range)
-        {
-            return t.clone();
+        let built = match cache.as_ref().filter(|(l, _, _)| *l == layers) {
+            Some((_, r, None)) if *r == range => return None,
+            Some((_, _, Some(t))) if t.covers(range.0, range.1) => return Some(Arc::clone(t)),
+            Some((_, _, Some(t))) => t.extended(range.0, range.1),
+            _ => TangentialTable::new(layers, range.0, range.1),
         }
-        let built = TangentialTable::new(layers, range.0, range.1).map(Arc::new);
+        .map(Arc::new);
         *cache = Some((layers, range, built.clone()));
         built
     }

@@ -49,14 +49,51 @@ fn exact(layers: &Bilayer, y: f64, direct: bool) -> [f64; 3] {
     v
 }
 
+/// Panel j (from 0) down from ln [`X_FAR`] at `width`, on [ln X_FAR − (j + 1)·width,
+/// ln X_FAR − j·width]: each square's interpolant through its Chebyshev points, or `None` when
+/// one misses the exact value at a check point by more than [`TABLE_RTOL`] relative to the
+/// panel's largest value (to each value where the panel lies below [`X_DIRECT`] and holds the
+/// squares themselves).
+fn panel(layers: &Bilayer, j: usize, width: f64, interp: &Interpolation) -> Option<[[f64; N]; 3]> {
+    let centre = X_FAR.ln() - (j as f64 + 0.5) * width;
+    let direct = j >= first_direct(width);
+    let nodes = crate::cheb::nodes();
+    let at = |t: f64| exact(layers, centre + 0.5 * width * t, direct);
+    let vals: [[f64; 3]; N] = std::array::from_fn(|j| at(nodes[j]));
+    let coef: [[f64; N]; 3] =
+        std::array::from_fn(|i| interp.coefficients(&std::array::from_fn(|j| vals[j][i])));
+    for t in check_points() {
+        let want = at(t);
+        for i in 0..3 {
+            let scale = if direct {
+                want[i]
+            } else {
+                vals.iter().map(|v| v[i]).fold(want[i], f64::max)
+            };
+            if (poly(&coef[i], t) - want[i]).abs() > TABLE_RTOL * scale {
+                return None;
+            }
+        }
+    }
+    Some(coef)
+}
+
 /// Piecewise-polynomial tables of the friction kernels' squares in y = ln(qd) for one pair.
+/// The panels lie on a grid counted down from y = ln [`X_FAR`] (panel k from the top spans
+/// [ln X_FAR − (k + 1)·width, ln X_FAR − k·width], k from 0), so a table built over a narrow range and
+/// extended later ([`Self::extended`]) keeps its panels and equals, to the last bit, one built
+/// over the wider range at once.
 #[derive(Debug, Clone)]
 pub struct TangentialTable {
     layers: Bilayer,
     y0: f64,
     y1: f64,
+    width: f64,
     inv_width: f64,
+    /// Panels bottom-up: panels[p] is panel `top + panels.len() − 1 − p` from the top.
     panels: Vec<[[f64; N]; 3]>,
+    /// The table's upper end, counted in panels down from ln [`X_FAR`].
+    top: usize,
     /// f_t e^x, h e^x and (g_t − h) e^x above [`X_FAR`]: intercepts and slopes.
     far: [[f64; 2]; 3],
     /// Panels [0, direct) lie below [`X_DIRECT`] and hold the squares themselves.
@@ -74,68 +111,96 @@ fn far_lines(layers: &Bilayer) -> [[f64; 2]; 3] {
     [line(a.f_t, b.f_t), line(a.h, b.h), line(a.diff, b.diff)]
 }
 
+/// The first panel from the top (at `width`) that lies below [`X_DIRECT`] ([`panel`]).
+fn first_direct(width: f64) -> usize {
+    ((X_FAR.ln() - X_DIRECT.ln()) / width).ceil() as usize
+}
+
+/// The panels from the top (at `width`, [`panel`]) that cover qd in [x_min, x_max]: the first
+/// and one past the last, at least one; `None` beyond [`MAX_SPAN`].
+fn panels_covering(x_min: f64, x_max: f64, width: f64) -> Option<(usize, usize)> {
+    let top = X_FAR.ln();
+    let (hi, lo) = (x_max.min(X_FAR).ln(), x_min.ln());
+    if !(hi.is_finite() && lo.is_finite() && hi - lo <= MAX_SPAN) {
+        return None;
+    }
+    let first = ((top - hi) / width).floor() as usize;
+    let last = (((top - lo) / width).ceil() as usize).max(first + 1);
+    Some((first, last))
+}
+
+/// The checks of a panel's interpolant: its ends and the midpoints between its outer nodes
+/// and between its middle ones, in the local variable t.
+fn check_points() -> [f64; 5] {
+    let nodes = crate::cheb::nodes();
+    [
+        -1.0,
+        1.0,
+        0.5 * (nodes[0] + nodes[1]),
+        0.5 * (nodes[N - 2] + nodes[N - 1]),
+        0.5 * (nodes[N / 2 - 1] + nodes[N / 2]),
+    ]
+}
+
 impl TangentialTable {
     /// A table covering qd in [x_min, x_max], or `None` when the range is too wide or the
     /// kernels are not resolved to [`TABLE_RTOL`] by the finest panels.
     pub fn new(layers: Bilayer, x_min: f64, x_max: f64) -> Option<Self> {
-        let y1 = x_max.min(X_FAR).ln();
-        let y0 = x_min.ln().min(y1 - WIDTH);
-        if !(y0.is_finite() && y1.is_finite() && y1 - y0 <= MAX_SPAN) {
-            return None;
-        }
         let interp = Interpolation::new();
-        (0..=MAX_HALVINGS)
-            .find_map(|h| Self::build(layers, y0, y1, WIDTH / f64::from(1 << h), &interp))
+        (0..=MAX_HALVINGS).find_map(|h| {
+            let width = WIDTH / f64::from(1 << h);
+            let (first, last) = panels_covering(x_min, x_max, width)?;
+            let panels = (first..last)
+                .rev()
+                .map(|k| panel(&layers, k, width, &interp))
+                .collect::<Option<Vec<_>>>()?;
+            Some(Self::with_panels(layers, width, first, panels))
+        })
     }
 
-    fn build(
-        layers: Bilayer,
-        y0: f64,
-        y1: f64,
-        width: f64,
-        interp: &Interpolation,
-    ) -> Option<Self> {
-        let count = (((y1 - y0) / width).ceil() as usize).max(1);
-        let nodes = crate::cheb::nodes();
-        let checks = [
-            -1.0,
-            1.0,
-            0.5 * (nodes[0] + nodes[1]),
-            0.5 * (nodes[N - 2] + nodes[N - 1]),
-            0.5 * (nodes[N / 2 - 1] + nodes[N / 2]),
-        ];
-        let direct = (((X_DIRECT.ln() - y0) / width).floor().max(0.0) as usize).min(count);
-        let mut panels = Vec::with_capacity(count);
-        for p in 0..count {
-            let centre = y0 + (p as f64 + 0.5) * width;
-            let at = |t: f64| exact(&layers, centre + 0.5 * width * t, p < direct);
-            let vals: [[f64; 3]; N] = std::array::from_fn(|j| at(nodes[j]));
-            let coef: [[f64; N]; 3] =
-                std::array::from_fn(|k| interp.coefficients(&std::array::from_fn(|j| vals[j][k])));
-            for &t in &checks {
-                let want = at(t);
-                for k in 0..3 {
-                    let scale = if p < direct {
-                        want[k]
-                    } else {
-                        vals.iter().map(|v| v[k]).fold(want[k], f64::max)
-                    };
-                    if (poly(&coef[k], t) - want[k]).abs() > TABLE_RTOL * scale {
-                        return None;
-                    }
-                }
+    /// This table extended to cover qd in [x_min, x_max] as well: its panels kept, the
+    /// missing ones built at its width (a table at another width where they are not resolved
+    /// there, [`Self::new`] over the union). `None` as for [`Self::new`].
+    pub fn extended(&self, x_min: f64, x_max: f64) -> Option<Self> {
+        let (lo, hi) = self.range();
+        let (x_min, x_max) = (x_min.min(lo), x_max.max(hi));
+        let interp = Interpolation::new();
+        let (first, last) = panels_covering(x_min, x_max, self.width)?;
+        let (first, last) = (first.min(self.top), last.max(self.top + self.panels.len()));
+        let built = |ks: std::ops::Range<usize>| {
+            ks.rev()
+                .map(|k| panel(&self.layers, k, self.width, &interp))
+                .collect::<Option<Vec<_>>>()
+        };
+        let below = built(self.top + self.panels.len()..last);
+        let above = built(first..self.top);
+        match (below, above) {
+            (Some(mut panels), Some(above)) => {
+                panels.extend_from_slice(&self.panels);
+                panels.extend(above);
+                Some(Self::with_panels(self.layers, self.width, first, panels))
             }
-            panels.push(coef);
+            _ => Self::new(self.layers, x_min, x_max),
         }
-        Some(Self {
+    }
+
+    /// The table of `panels` (bottom-up) at `width`, the uppermost `first` panels below the
+    /// grid's top.
+    fn with_panels(layers: Bilayer, width: f64, first: usize, panels: Vec<[[f64; N]; 3]>) -> Self {
+        let top = X_FAR.ln();
+        let last = first + panels.len();
+        let direct = last.saturating_sub(first_direct(width)).min(panels.len());
+        Self {
             layers,
-            y0,
-            y1,
+            y0: top - last as f64 * width,
+            y1: top - first as f64 * width,
+            width,
             inv_width: 1.0 / width,
             panels,
+            top: first,
             far: far_lines(&layers),
             direct,
-        })
+        }
     }
 
     /// The material pair tabulated.
@@ -146,6 +211,11 @@ impl TangentialTable {
     /// The range of q·d tabulated (above its upper end, up to [`X_FAR`], nothing is needed).
     pub fn range(&self) -> (f64, f64) {
         (self.y0.exp(), self.y1.exp())
+    }
+
+    /// Whether the table covers qd in [x_min, x_max] (anything above [`X_FAR`] is covered).
+    pub fn covers(&self, x_min: f64, x_max: f64) -> bool {
+        x_min.ln() >= self.y0 && x_max.min(X_FAR).ln() <= self.y1
     }
 
     /// f_t², ((g_t + h)/2)² + (g_t − h)²/8 and (g_t − h)²/8 at x = qd with y = ln x (x must
@@ -293,6 +363,37 @@ impl TangentialTable {
 mod tests {
     use super::*;
     use crate::layer::Elastic;
+
+    /// A table built over a narrow range and extended (below, above, both) equals the one
+    /// built over the union at once, to the last bit at every x, with the same range; it
+    /// covers what it was asked for, and a table that already covers a range is unchanged by
+    /// extending it there.
+    #[test]
+    fn extended_tables_equal_tables_built_at_once() {
+        let e = |y: f64, nu: f64| Elastic::new(y, nu).unwrap();
+        for layers in [
+            Bilayer::new(e(1e6, 0.5), e(2e11, 0.3)),
+            Bilayer::new(e(1e9, 0.3), e(1e6, 0.5)),
+        ] {
+            let narrow = TangentialTable::new(layers, 0.3, 5.0).unwrap();
+            for (lo, hi) in [(1e-3, 5.0), (0.3, 200.0), (2e-4, 60.0), (0.5, 4.0)] {
+                let grown = narrow.extended(lo, hi).unwrap();
+                let (lo, hi) = (lo.min(0.3), hi.max(5.0));
+                let once = TangentialTable::new(layers, lo, hi).unwrap();
+                assert!(grown.covers(lo, hi) && once.covers(lo, hi));
+                assert_eq!(grown.range(), once.range());
+                assert_eq!(grown.direct, once.direct);
+                for i in 0..=4000 {
+                    let x = 1e-4 * 10f64.powf(6.0 * f64::from(i) / 4000.0);
+                    if x < lo || x > hi.max(X_FAR) {
+                        continue;
+                    }
+                    let (a, b) = (grown.squares(x, x.ln()), once.squares(x, x.ln()));
+                    assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "x = {x}");
+                }
+            }
+        }
+    }
 
     /// The batched slots equal [`TangentialTable::squares`] at every node to the last bit (the
     /// σ slot as f² + (μ²/2)·f_t² formed in that order), with and without the friction slots, in
