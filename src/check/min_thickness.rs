@@ -122,7 +122,7 @@
 //! search is given the floor, and where u < 2u_f at both of the last two samples (and above
 //! u_f) it extrapolates the excess u − u_f log-linearly instead, at the excess's growth rate
 //! clamped to [[`MIN_GROWTH`], [`MAX_EXCESS_GROWTH`]], aiming u_f + excess at the step's
-//! target ([`scan_step`]); elsewhere the plain rule holds. The floor only chooses step
+//! target (`scan_step`); elsewhere the plain rule holds. The floor only chooses step
 //! lengths: every decision (a widened step's threshold, the guard, pass or fail) still
 //! compares u itself, so the argument above holds whatever floor is given (test
 //! `the_friction_floor_moves_no_crossing`).
