@@ -646,8 +646,9 @@ struct Node {
 /// are the same to the last bit.
 ///
 /// The base follows the stacks served ([`StackCache::serve`]): a stack that differs from the
-/// last one below the varied layer, or in the number of layers or the substrate, starts a new
-/// base below the deepest layer that differs (the top layer's when the stacks are unrelated).
+/// last one below the varied layer, in the varied layer's material (the faces are that
+/// material's), or in the number of layers or the substrate, starts a new base below the
+/// deepest layer that differs (the top layer's when the stacks are unrelated).
 #[derive(Debug, Clone)]
 pub struct StackCache {
     stack: Stack,
@@ -753,7 +754,8 @@ impl StackCache {
     }
 
     /// Serve `stack` from now on: the responses kept are dropped unless it is the stack served,
-    /// the base is kept if it is `stack`'s too.
+    /// the base is kept if it is `stack`'s too and the varied layer's material is unchanged
+    /// (the faces kept depend on it); otherwise everything kept is dropped.
     pub fn serve(&mut self, stack: &Stack) {
         if *stack == self.stack {
             return;
@@ -765,8 +767,12 @@ impl StackCache {
             .iter()
             .zip(&self.stack.layers)
             .rposition(|(a, b)| a != b);
+        // The nodes' faces are in the varied layer's units and on its K_u, K_d: kept only while
+        // its material is.
+        let same_face = related
+            && stack.layers[self.varied].material == self.stack.layers[self.varied].material;
         match deepest {
-            Some(v) if related && v <= self.varied => {}
+            Some(v) if same_face && v <= self.varied => {}
             _ => {
                 self.varied = match deepest {
                     Some(v) if related => v,
