@@ -133,6 +133,25 @@ pub(super) fn evaluate_on(
     evaluations: usize,
     scratch: &mut Scratch,
 ) -> Result<(Contact, Option<[Estimate; 2]>), Error> {
+    let sums = g_sum_shared(pt, scratch)?;
+    evaluate_sharing(pt, evaluations, sums, scratch)
+}
+
+/// G's sum on `pt`'s grid with its kernels' S⁻², into `scratch`, for evaluations that share it
+/// ([`evaluate_sharing`]: a stack's interfaces, whose kernels share S⁻²). Returns the sum and
+/// its error estimate.
+pub(super) fn g_sum_shared(pt: &Point, scratch: &mut Scratch) -> Result<(f64, f64), Error> {
+    g_sum(pt.grid, pt.kernels, pt.depth, &mut scratch.base)
+}
+
+/// [`evaluate_on`] with G's sum (`sums`) and its nodes' values already in `scratch`
+/// ([`g_sum_shared`] on the same grid, with kernels of the same S⁻²).
+pub(super) fn evaluate_sharing(
+    pt: &Point,
+    evaluations: usize,
+    (g_sum, g_err): (f64, f64),
+    scratch: &mut Scratch,
+) -> Result<(Contact, Option<[Estimate; 2]>), Error> {
     let Point {
         grid,
         depth: d,
@@ -142,7 +161,6 @@ pub(super) fn evaluate_on(
         ..
     } = *pt;
     let cg = 0.25 * PI * e0 * e0;
-    let (g_sum, g_err) = g_sum(grid, pt.kernels, d, &mut scratch.base)?;
     let rho_k = &scratch.base.rho_k;
     let g1 = Estimate::new(cg * g_sum, cg * g_err, Termination::Converged);
     let area = g1.map(
