@@ -236,12 +236,7 @@ impl Engine {
     /// two groups, the requested quantities and the friction slots with G1 and A, is taken from
     /// the first grid on which it meets rtol, and only a group that has not is evaluated on the
     /// next. The kernel evaluations counted are those of every grid evaluated.
-    pub(super) fn refine(
-        &self,
-        kernels: &Kernels,
-        at: At,
-        request: Request,
-    ) -> Result<(Contact, Option<[Estimate; 2]>), Error> {
+    fn refine(&self, kernels: &Kernels, at: At, request: Request) -> Result<Refined, Error> {
         let mut r = Refinement::new(kernels, request);
         for level in 0..=MAX_REFINE {
             SCRATCH.with_borrow_mut(|s| r.step(self, level, (kernels, at, request), None, s))?;
@@ -259,7 +254,7 @@ impl Engine {
     pub(super) fn refine_sharing(
         &self,
         each: &[(Kernels, At, Request)],
-    ) -> Result<Vec<(Contact, Option<[Estimate; 2]>)>, Error> {
+    ) -> Result<Vec<Refined>, Error> {
         let mut all: Vec<Refinement> = each
             .iter()
             .map(|(kernels, _, request)| Refinement::new(kernels, *request))
@@ -283,6 +278,10 @@ impl Engine {
         Ok(all.into_iter().map(|r| r.finish(rtol)).collect())
     }
 }
+
+/// A refined evaluation: the contact, and the friction slots' rms when asked for
+/// ([`Engine::refine`]).
+type Refined = (Contact, Option<[Estimate; 2]>);
 
 /// One evaluation's refinement over the grid levels ([`Engine::refine`]): the kernel
 /// evaluations so far, and each group (the requested quantities; the friction slots, when
@@ -399,7 +398,7 @@ impl Refinement {
     }
 
     /// The contact (and the friction slots' rms), marked where rtol was not met.
-    fn finish(self, rtol: f64) -> (Contact, Option<[Estimate; 2]>) {
+    fn finish(self, rtol: f64) -> Refined {
         let mut c = self.main.expect("at least one grid level");
         c.kernel_evaluations = self.evaluations;
         c.interface_kernel_evaluations = self.interface;

@@ -666,9 +666,9 @@ struct Node {
 /// and so is its downward pass (the interface kernels), made only at the wavenumbers whose
 /// interface kernels are asked for (the contact integrals ask for S alone above the interface
 /// tails' cut). The same operations as [`Stack::response_into`] in the same order, so the same
-/// values to the last bit, but for S where q·d_1 > [`X_FAR`]: the top layer's half-space's
-/// ([`Stack::s_far`], formed once; the steps and the base are then formed only if the interface
-/// kernels are asked for).
+/// values to the last bit, but for S where q·d_1 > 40: the top layer's half-space's (formed
+/// once per stack: the layers below are far from S there; the steps and the base are then
+/// formed only if the interface kernels are asked for).
 ///
 /// The base follows the stacks served ([`StackCache::serve`]): a stack that differs from the
 /// last one below the varied layer, in the varied layer's material (the faces are that
