@@ -5,6 +5,10 @@
 //! evaluation, checks, d_min search), run alternately, and the median of their ratios.
 //!
 //! Run: `cargo run --release --example bench_stack_check`
+//!
+//! With `-- one N` or `-- two N` it runs N checks of one kind, untimed, for an instruction
+//! count per check: `valgrind --tool=callgrind target/release/examples/bench_stack_check two 3`
+//! less the same with `two 1`, halved (the first check's set-up and warm-up cancel).
 
 use coatcheck::check::stack::StackChecker;
 use coatcheck::check::{Checker, Design};
@@ -30,6 +34,25 @@ fn main() {
         friction: 0.0,
         criteria: stack.criteria,
     };
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let [which, n] = args.as_slice() {
+        let n: usize = n.parse().expect("a number of checks");
+        for _ in 0..n {
+            match which.as_str() {
+                "one" => {
+                    let c = Checker::new(&spectrum, one.clone(), scene.settings).expect("valid");
+                    c.run(rubber.thickness).expect("check runs");
+                }
+                "two" => {
+                    let c = StackChecker::new(&spectrum, stack.clone(), scene.settings)
+                        .expect("valid stack");
+                    c.run().expect("check runs");
+                }
+                _ => panic!("usage: bench_stack_check [one|two N]"),
+            }
+        }
+        return;
+    }
     // The two checks alternate, so that both see the same load on a shared machine; the ratio
     // is the median of the per-pair ratios.
     let reps = 41;

@@ -2,7 +2,7 @@
 //! graded regions per refinement level, shared with its siblings), the kernel table of the
 //! material pair, and the refinement loop around one evaluation ([`super::evaluate`]).
 
-use super::evaluate::{Point, Scratch, evaluate_on};
+use super::evaluate::{Point, Scratch, evaluate_on, evaluate_sharing, g_sum_shared};
 use super::graded::Graded;
 use super::grid::{Grid, Knots};
 use super::kernels::{Kernels, Mix};
@@ -238,70 +238,173 @@ impl Engine {
     /// two groups, the requested quantities and the friction slots with G1 and A, is taken from
     /// the first grid on which it meets rtol, and only a group that has not is evaluated on the
     /// next. The kernel evaluations counted are those of every grid evaluated.
-    pub(super) fn refine(
-        &self,
-        kernels: &Kernels,
-        at: At,
-        request: Request,
-    ) -> Result<(Contact, Option<[Estimate; 2]>), Error> {
-        let rtol = self.settings.rtol;
-        let floor = rounding_floor(at.kernel_rtol);
-        let friction = kernels.sliding() && request.tau_interface;
-        let (mut evaluations, mut interface) = (0, 0);
-        let (mut main, mut slots): (Option<Contact>, Option<Contact>) = (None, None);
-        let (mut main_done, mut slots_done) = (false, !friction);
+    fn refine(&self, kernels: &Kernels, at: At, request: Request) -> Result<Refined, Error> {
+        let mut r = Refinement::new(kernels, request);
         for level in 0..=MAX_REFINE {
-            let grid = self.grid(level)?;
-            let req = if main_done {
-                Request::default()
-            } else {
-                request
-            };
-            let graded = match req.interface() || !slots_done {
-                true => Some(self.graded(level)?),
-                false => None,
-            };
-            evaluations += grid.q.len();
-            let point = Point {
-                grid,
-                graded,
-                kernels,
-                depth: at.depth,
-                e_top: at.e_top,
-                p0: at.p0,
-                req,
-                friction: !slots_done,
-                rtol,
-            };
-            let (mut c, pair) = SCRATCH.with_borrow_mut(|s| evaluate_on(&point, evaluations, s))?;
-            interface += c.interface_kernel_evaluations;
-            evaluations = c.kernel_evaluations;
-            if let Some([fx, fy]) = pair {
-                // The friction slots as a contact of their own, in the σ and τ slots.
-                let mut f = Contact {
-                    sigma_rms_top: None,
-                    e_eff_over_e_film: None,
-                    sigma_rms_interface: Some(fx),
-                    tau_rms_interface: Some(fy),
-                    ..c.clone()
-                };
-                add_rounding_floor(&mut f, floor);
-                slots_done = converged(&f, rtol);
-                slots = Some(f);
-            }
-            if !main_done {
-                add_rounding_floor(&mut c, floor);
-                main_done = converged(&c, rtol);
-                main = Some(c);
-            }
-            if main_done && slots_done {
+            SCRATCH.with_borrow_mut(|s| r.step(self, level, (kernels, at, request), None, s))?;
+            if r.done() {
                 break;
             }
         }
-        let mut c = main.expect("at least one grid level");
-        c.kernel_evaluations = evaluations;
-        c.interface_kernel_evaluations = interface;
-        let pair = slots.map(|mut f| {
+        Ok(r.finish(self.settings.rtol))
+    }
+
+    /// [`Self::refine`] of several evaluations whose kernels share S⁻² (a stack's interfaces,
+    /// each with its kernels, where and what): grid by grid, G's sum formed once per grid for
+    /// all of them. Each is refined exactly as by [`Self::refine`] alone (the same grids, the
+    /// same sums to the last bit), until every one has met rtol.
+    pub(super) fn refine_sharing(
+        &self,
+        each: &[(Kernels, At, Request)],
+    ) -> Result<Vec<Refined>, Error> {
+        let mut all: Vec<Refinement> = each
+            .iter()
+            .map(|(kernels, _, request)| Refinement::new(kernels, *request))
+            .collect();
+        for level in 0..=MAX_REFINE {
+            let Some(first) = all.iter().position(|r| !r.done()) else {
+                break;
+            };
+            SCRATCH.with_borrow_mut(|s| {
+                let (kernels, at, _) = &each[first];
+                let sums = all[first].g_sum(self, level, kernels, *at, s)?;
+                for (r, &(ref kernels, at, request)) in all.iter_mut().zip(each) {
+                    if !r.done() {
+                        r.step(self, level, (kernels, at, request), Some(sums), s)?;
+                    }
+                }
+                Ok::<_, Error>(())
+            })?;
+        }
+        let rtol = self.settings.rtol;
+        Ok(all.into_iter().map(|r| r.finish(rtol)).collect())
+    }
+}
+
+/// A refined evaluation: the contact, and the friction slots' rms when asked for
+/// ([`Engine::refine`]).
+type Refined = (Contact, Option<[Estimate; 2]>);
+
+/// One evaluation's refinement over the grid levels ([`Engine::refine`]): the kernel
+/// evaluations so far, and each group (the requested quantities; the friction slots, when
+/// asked for) as evaluated on the last grid and whether it has met rtol.
+struct Refinement {
+    evaluations: usize,
+    interface: usize,
+    main: Option<Contact>,
+    slots: Option<Contact>,
+    main_done: bool,
+    slots_done: bool,
+}
+
+impl Refinement {
+    fn new(kernels: &Kernels, request: Request) -> Self {
+        let friction = kernels.sliding() && request.tau_interface;
+        Self {
+            evaluations: 0,
+            interface: 0,
+            main: None,
+            slots: None,
+            main_done: false,
+            slots_done: !friction,
+        }
+    }
+
+    fn done(&self) -> bool {
+        self.main_done && self.slots_done
+    }
+
+    /// The evaluation point on the grid of `level` (its graded region only when an interface
+    /// quantity or the friction slots are still wanted).
+    fn point<'a>(
+        &self,
+        engine: &'a Engine,
+        level: usize,
+        (kernels, at, request): (&'a Kernels<'a>, At, Request),
+    ) -> Result<Point<'a>, Error> {
+        let grid = engine.grid(level)?;
+        let req = if self.main_done {
+            Request::default()
+        } else {
+            request
+        };
+        let graded = match req.interface() || !self.slots_done {
+            true => Some(engine.graded(level)?),
+            false => None,
+        };
+        Ok(Point {
+            grid,
+            graded,
+            kernels,
+            depth: at.depth,
+            e_top: at.e_top,
+            p0: at.p0,
+            req,
+            friction: !self.slots_done,
+            rtol: engine.settings.rtol,
+        })
+    }
+
+    /// G's sum on the grid of `level` with `kernels`' S⁻², into `s` ([`g_sum_shared`]).
+    fn g_sum(
+        &self,
+        engine: &Engine,
+        level: usize,
+        kernels: &Kernels,
+        at: At,
+        s: &mut Scratch,
+    ) -> Result<(f64, f64), Error> {
+        let point = self.point(engine, level, (kernels, at, Request::default()))?;
+        g_sum_shared(&point, s)
+    }
+
+    /// The evaluation on the grid of `level` of the groups not yet done, with G's sum `shared`
+    /// if it is in `s` already.
+    fn step(
+        &mut self,
+        engine: &Engine,
+        level: usize,
+        what: (&Kernels, At, Request),
+        shared: Option<(f64, f64)>,
+        s: &mut Scratch,
+    ) -> Result<(), Error> {
+        let rtol = engine.settings.rtol;
+        let floor = rounding_floor(what.1.kernel_rtol);
+        let point = self.point(engine, level, what)?;
+        self.evaluations += point.grid.q.len();
+        let (mut c, pair) = match shared {
+            Some(sums) => evaluate_sharing(&point, self.evaluations, sums, s)?,
+            None => evaluate_on(&point, self.evaluations, s)?,
+        };
+        self.interface += c.interface_kernel_evaluations;
+        self.evaluations = c.kernel_evaluations;
+        if let Some([fx, fy]) = pair {
+            // The friction slots as a contact of their own, in the σ and τ slots.
+            let mut f = Contact {
+                sigma_rms_top: None,
+                e_eff_over_e_film: None,
+                sigma_rms_interface: Some(fx),
+                tau_rms_interface: Some(fy),
+                ..c.clone()
+            };
+            add_rounding_floor(&mut f, floor);
+            self.slots_done = converged(&f, rtol);
+            self.slots = Some(f);
+        }
+        if !self.main_done {
+            add_rounding_floor(&mut c, floor);
+            self.main_done = converged(&c, rtol);
+            self.main = Some(c);
+        }
+        Ok(())
+    }
+
+    /// The contact (and the friction slots' rms), marked where rtol was not met.
+    fn finish(self, rtol: f64) -> Refined {
+        let mut c = self.main.expect("at least one grid level");
+        c.kernel_evaluations = self.evaluations;
+        c.interface_kernel_evaluations = self.interface;
+        let pair = self.slots.map(|mut f| {
             if !converged(&f, rtol) {
                 mark_not_reached(&mut f, rtol);
             }
@@ -311,7 +414,7 @@ impl Engine {
         if !converged(&c, rtol) {
             mark_not_reached(&mut c, rtol);
         }
-        Ok((c, pair))
+        (c, pair)
     }
 }
 

@@ -19,7 +19,7 @@
 //! integral so far, since P ≥ P(G1) = A everywhere); that bound is added to their error estimate.
 //! The cut adapts to the film and the spectrum: f, g and P are evaluated only where they matter.
 
-use super::graded::{Graded, NEAR_NONE, Near};
+use super::graded::{Graded, GradedScratch, NEAR_NONE, Near};
 use super::grid::Grid;
 use super::kernels::Kernels;
 use super::probability::{
@@ -53,9 +53,8 @@ const CUT_CHUNK: usize = 16;
 pub struct Scratch {
     base: BaseScratch,
     interface: InterfaceScratch,
-    /// S⁻², f², g², x, P, e^{−x²} and the friction slots at the graded region's nodes
-    /// ([`Graded::integrate`]).
-    graded: [Vec<f64>; 8],
+    /// The graded region's buffers ([`Graded::integrate`]).
+    graded: GradedScratch,
 }
 
 /// G's sum over all nodes ([`g_sum`]).
@@ -133,6 +132,27 @@ pub(super) fn evaluate_on(
     evaluations: usize,
     scratch: &mut Scratch,
 ) -> Result<(Contact, Option<[Estimate; 2]>), Error> {
+    let sums = g_sum_shared(pt, scratch)?;
+    evaluate_sharing(pt, evaluations, sums, scratch)
+}
+
+/// G's sum on `pt`'s grid with its kernels' S⁻², into `scratch`, for evaluations that share it
+/// ([`evaluate_sharing`]: a stack's interfaces, whose kernels share S⁻²; they share S⁻², G and
+/// P over the graded region too, formed by the first of them). Returns the sum and its error
+/// estimate.
+pub(super) fn g_sum_shared(pt: &Point, scratch: &mut Scratch) -> Result<(f64, f64), Error> {
+    scratch.graded.forget();
+    g_sum(pt.grid, pt.kernels, pt.depth, &mut scratch.base)
+}
+
+/// [`evaluate_on`] with G's sum (`sums`) and its nodes' values already in `scratch`
+/// ([`g_sum_shared`] on the same grid, with kernels of the same S⁻²).
+pub(super) fn evaluate_sharing(
+    pt: &Point,
+    evaluations: usize,
+    (g_sum, g_err): (f64, f64),
+    scratch: &mut Scratch,
+) -> Result<(Contact, Option<[Estimate; 2]>), Error> {
     let Point {
         grid,
         depth: d,
@@ -142,7 +162,6 @@ pub(super) fn evaluate_on(
         ..
     } = *pt;
     let cg = 0.25 * PI * e0 * e0;
-    let (g_sum, g_err) = g_sum(grid, pt.kernels, d, &mut scratch.base)?;
     let rho_k = &scratch.base.rho_k;
     let g1 = Estimate::new(cg * g_sum, cg * g_err, Termination::Converged);
     let area = g1.map(
@@ -242,7 +261,7 @@ fn interface(
     (g1, area, g_sum): (Estimate, f64, f64),
     base: &BaseScratch,
     s: &mut InterfaceScratch,
-    graded_buf: &mut [Vec<f64>; 8],
+    graded_buf: &mut GradedScratch,
 ) -> Interface {
     let Point {
         grid,

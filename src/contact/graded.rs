@@ -370,8 +370,10 @@ impl Graded {
     }
 
     /// The graded region's sums: the kernels at all its nodes in two batches (S⁻², then the
-    /// interface slots) into `buf`, G at all of them panel by panel, P at all of them in one
-    /// batch, then the panels' sums; the friction slots' too with `friction`.
+    /// interface slots) into `s`'s buffers, G at all of them panel by panel, P at all of them in
+    /// one batch, then the panels' sums; the friction slots' too with `friction`. S⁻², G and P
+    /// beyond the innermost piece are taken from `s` where an earlier call formed them since
+    /// [`GradedScratch::forget`] (the same region, S⁻², p0 and cg).
     pub(super) fn integrate(
         &self,
         kernels: &Kernels,
@@ -379,7 +381,7 @@ impl Graded {
         cg: f64,
         req: Request,
         friction: bool,
-        buf: &mut [Vec<f64>; 8],
+        s: &mut GradedScratch,
     ) -> Near {
         let (r0, fr0) = kernels.squared(self.q_l, self.q_l.ln());
         // The largest merged panel over which G ≤ a²/36 by the bound G'(u_L)·r·e^{γr}.
@@ -428,8 +430,11 @@ impl Graded {
         let lo = self.offsets[first];
         let (q, u) = (&self.nodes.0[lo..], &self.nodes.1[lo..]);
         let m = q.len();
+        let GradedScratch { buf, formed } = s;
         let [k, f2, g2, x, p, gauss, fx, fy] = buf;
-        kernels.k_many(q, u, sized(k, m, 0.0));
+        if formed.is_none() {
+            kernels.k_many(q, u, sized(k, m, 0.0));
+        }
         let friction_buf = if friction {
             Some([&mut sized(fx, m, 0.0)[..], sized(fy, m, 0.0)])
         } else {
@@ -437,12 +442,18 @@ impl Graded {
         };
         kernels.interface_many(q, u, sized(f2, m, 0.0), sized(g2, m, 0.0), friction_buf);
         let range = |i: usize| self.offsets[i] - lo..self.offsets[i + 1] - lo;
-        sized(x, m, 0.0);
-        for (i, panel) in self.panels.iter().enumerate().skip(first) {
-            let r = range(i);
-            panel.arguments(&k[r.clone()], &mut near, p0, cg, &mut x[r]);
+        match *formed {
+            Some(g) => (near.g_raw, near.g_raw_err, near.evaluations) = g,
+            None => {
+                sized(x, m, 0.0);
+                for (i, panel) in self.panels.iter().enumerate().skip(first) {
+                    let r = range(i);
+                    panel.arguments(&k[r.clone()], &mut near, p0, cg, &mut x[r]);
+                }
+                erf_and_gauss_many(x, sized(p, m, 0.0), sized(gauss, m, 0.0));
+                *formed = Some((near.g_raw, near.g_raw_err, near.evaluations));
+            }
         }
-        erf_and_gauss_many(x, sized(p, m, 0.0), sized(gauss, m, 0.0));
         for (i, panel) in self.panels.iter().enumerate().skip(first) {
             let r = range(i);
             // The friction slots are empty unless asked for.
@@ -455,6 +466,24 @@ impl Graded {
             panel.sums(&k[r.clone()], &p[r], kernels, &mut near, slots);
         }
         near
+    }
+}
+
+/// The graded region's buffers ([`Graded::integrate`]): S⁻², f², g², x, P, e^{−x²} and the
+/// friction slots at its nodes beyond the innermost piece, and whether S⁻², x and P there are
+/// formed, with G over the region (raw sum, its error, the kernel evaluations counted): the
+/// evaluations on one grid whose kernels share S⁻² (a stack's interfaces) form them once.
+#[derive(Default)]
+pub(super) struct GradedScratch {
+    buf: [Vec<f64>; 8],
+    formed: Option<(f64, f64, usize)>,
+}
+
+impl GradedScratch {
+    /// Forget S⁻², x and P: the next [`Graded::integrate`] forms them (another grid, S⁻², p0
+    /// or E*).
+    pub(super) fn forget(&mut self) {
+        self.formed = None;
     }
 }
 

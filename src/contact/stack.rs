@@ -7,9 +7,10 @@
 //! `Kernels::stack(…, k, …)` and the interface's depth z_k in place of the film thickness (the
 //! interface tail's cut at q·z_k ≥ 20 assumes f_k² and g_k² decrease there, as e^{−2q z_k}
 //! times a rational function of q whose degree is at most twice the number of layers: checked
-//! for the stacks of the tests, `tests/it/stack_scene.rs`). G, A/A0 and σ_rms at the top are
-//! the first interface's evaluation's (each evaluation integrates the same S⁻² on the same
-//! grids). The kernels' error bound [`STACK_RTOL`] enters the rounding floor of every estimate.
+//! for the stacks of the tests, `tests/it/stack_scene.rs`). The evaluations are refined
+//! together, grid by grid, and share G's sum on each grid (their kernels share S⁻²:
+//! [`Engine::refine_sharing`]); each is refined as it would be alone. G, A/A0 and σ_rms at the
+//! top are the first interface's evaluation's. The kernels' error bound [`STACK_RTOL`] enters the rounding floor of every estimate.
 //! The stack's kernels are evaluated once per node for all interfaces (one call gives S and
 //! every f_k, g_k) and kept for the evaluation, in the engine's [`StackCache`]: between the
 //! evaluations of a minimum-thickness search, where one layer changes, the recursion through
@@ -102,23 +103,29 @@ impl Engine {
     ) -> Result<(StackContact, FrictionSlots), Error> {
         let stack = memo.borrow().stack().clone();
         let e_top = stack.layers()[0].material.e_star();
+        let depths = stack.depths();
+        let each: Vec<_> = depths
+            .iter()
+            .enumerate()
+            .map(|(k, &depth)| {
+                let req = Request {
+                    sigma_top: request.sigma_top && k == 0,
+                    e_eff: request.e_eff && k == 0,
+                    ..request
+                };
+                let at = At {
+                    depth,
+                    e_top,
+                    p0,
+                    kernel_rtol: STACK_RTOL,
+                };
+                (Kernels::stack(k, memo).mixed(mix, None), at, req)
+            })
+            .collect();
         let mut top = None;
-        let mut interfaces = Vec::with_capacity(stack.layers().len());
-        let mut friction = Vec::with_capacity(stack.layers().len());
-        for (k, depth) in stack.depths().into_iter().enumerate() {
-            let req = Request {
-                sigma_top: request.sigma_top && k == 0,
-                e_eff: request.e_eff && k == 0,
-                ..request
-            };
-            let at = At {
-                depth,
-                e_top,
-                p0,
-                kernel_rtol: STACK_RTOL,
-            };
-            let kernels = Kernels::stack(k, memo).mixed(mix, None);
-            let (c, pair) = self.refine(&kernels, at, req)?;
+        let mut interfaces = Vec::with_capacity(depths.len());
+        let mut friction = Vec::with_capacity(depths.len());
+        for ((c, pair), depth) in self.refine_sharing(&each)?.into_iter().zip(depths) {
             friction.push(pair);
             interfaces.push(InterfaceContact {
                 depth,

@@ -96,6 +96,9 @@ pub const MAX_LAYERS: usize = 10;
 /// Above this q·d a layer is "thick" (decaying-exponential step), at or below "thin" (series).
 const X_THIN: f64 = 1.0;
 
+/// Above this q·d_1 the top layer hides everything below it from S ([`Stack::s_far`]).
+const X_FAR: f64 = 40.0;
+
 /// Taylor terms of the propagator coefficients, enough for x ≤ 1 (the first left out is below
 /// 1e−20 of the sum).
 const TERMS: usize = 10;
@@ -547,6 +550,21 @@ impl Stack {
         self.s_of(u0)
     }
 
+    /// S where the top layer is far thicker than the wavelength, x = q·d_1 > [`X_FAR`]: the
+    /// top layer's half-space's, ũ(0) = K_d⁻¹ t(0), whatever lies below. The thick step's
+    /// ũ(0) = (I + ER)(K_d + K_u ER)⁻¹ t(0) differs from it only through ER = E_u R₀ E_d, and
+    /// ‖ER‖ ≤ 5(1 + 2x)² e^{−2x} < 6e−31: ‖E_u‖, ‖E_d‖ ≤ e^{−x}(1 + 2x/κ) with κ ≥ 1, and
+    /// R₀ = (K_u − K̃_b)⁻¹(K̃_b − K_d) = −I + (K_u − K_d)(K_u − K̃_b)⁻¹ has norm at most
+    /// 1 + 4(1 − ν) ≤ 5 for any base (K_u − K̃_b is symmetric with eigenvalues ≥ 1/κ, K̃_b being
+    /// negative definite; K_u − K_d = 4(1 − ν)/κ·I). Beside the entries of K_d (2/3 … 1 on the
+    /// diagonal) and of I, such terms round away: this is the step's S to the last bit, but for
+    /// a rounding a perturbation of 1e−30 relative can flip (one ulp, far inside
+    /// [`STACK_RTOL`]). Checked bit for bit against the recursion at neighbour modulus ratios
+    /// 1e±8 (`tests/it/stack.rs`).
+    fn s_far(&self) -> f64 {
+        self.s_of(mulv(&inv(&self.consts[0].kd), [0.0, 1.0]))
+    }
+
     /// S from the top displacement ũ(0) (in the top layer's units) under t(0) = (0, 1).
     fn s_of(&self, u0: V2) -> f64 {
         -u0[1] / (2.0 * (1.0 - self.layers[0].material.poisson))
@@ -626,10 +644,15 @@ pub type NodeMap = HashMap<u64, u32, BuildHasherDefault<NodeHasher>>;
 /// `generation` (the interface kernels, kept beside, if computed in `fg_generation`).
 #[derive(Debug, Clone, Copy)]
 struct Node {
-    /// The varied layer's face to the base.
+    /// The varied layer's face to the base (with the base's steps, formed when first needed:
+    /// `based`).
     face: Face,
+    based: bool,
     generation: u64,
     fg_generation: u64,
+    /// Whether the steps above the base and `u0` are this generation's: not where S is the top
+    /// layer's half-space's (q·d_1 > [`X_FAR`]) until the interfaces are asked for.
+    stepped: bool,
     s: f64,
     /// ũ(0) under t(0) = (0, 1), in the top layer's units: where the downward pass starts.
     u0: V2,
@@ -642,15 +665,20 @@ struct Node {
 /// top down to the varied one) is computed once per wavenumber and kept until the next stack,
 /// and so is its downward pass (the interface kernels), made only at the wavenumbers whose
 /// interface kernels are asked for (the contact integrals ask for S alone above the interface
-/// tails' cut). The same operations as [`Stack::response_into`] in the same order: the values
-/// are the same to the last bit.
+/// tails' cut). The same operations as [`Stack::response_into`] in the same order, so the same
+/// values to the last bit, but for S where q·d_1 > 40: the top layer's half-space's (formed
+/// once per stack: the layers below are far from S there; the steps and the base are then
+/// formed only if the interface kernels are asked for).
 ///
 /// The base follows the stacks served ([`StackCache::serve`]): a stack that differs from the
-/// last one below the varied layer, or in the number of layers or the substrate, starts a new
-/// base below the deepest layer that differs (the top layer's when the stacks are unrelated).
+/// last one below the varied layer, in the varied layer's material (the faces are that
+/// material's), or in the number of layers or the substrate, starts a new base below the
+/// deepest layer that differs (the top layer's when the stacks are unrelated).
 #[derive(Debug, Clone)]
 pub struct StackCache {
     stack: Stack,
+    /// S of the top layer's half-space ([`Stack::s_far`]).
+    s_far: f64,
     varied: usize,
     generation: u64,
     index: NodeMap,
@@ -719,6 +747,7 @@ impl StackCache {
             .flatten()
             .unwrap_or_default();
         Self {
+            s_far: stack.s_far(),
             stack,
             varied: 0,
             generation: 1,
@@ -753,7 +782,8 @@ impl StackCache {
     }
 
     /// Serve `stack` from now on: the responses kept are dropped unless it is the stack served,
-    /// the base is kept if it is `stack`'s too.
+    /// the base is kept if it is `stack`'s too and the varied layer's material is unchanged
+    /// (the faces kept depend on it); otherwise everything kept is dropped.
     pub fn serve(&mut self, stack: &Stack) {
         if *stack == self.stack {
             return;
@@ -765,8 +795,12 @@ impl StackCache {
             .iter()
             .zip(&self.stack.layers)
             .rposition(|(a, b)| a != b);
+        // The nodes' faces are in the varied layer's units and on its K_u, K_d: kept only while
+        // its material is.
+        let same_face = related
+            && stack.layers[self.varied].material == self.stack.layers[self.varied].material;
         match deepest {
-            Some(v) if related && v <= self.varied => {}
+            Some(v) if same_face && v <= self.varied => {}
             _ => {
                 self.varied = match deepest {
                     Some(v) if related => v,
@@ -781,6 +815,7 @@ impl StackCache {
             }
         }
         self.stack = stack.clone();
+        self.s_far = stack.s_far();
         self.generation += 1;
     }
 
@@ -841,7 +876,7 @@ impl StackCache {
         i
     }
 
-    /// The index of the node at q, kept (with the base's steps) if new.
+    /// The index of the node at q, kept if new (its base formed when first needed).
     #[inline(never)]
     fn find_or_add(&mut self, q: f64) -> usize {
         let next = self.nodes.len();
@@ -851,19 +886,16 @@ impl StackCache {
             let n = self.stack.layers.len();
             let (above, below) = (self.varied + 1, n - self.varied - 1);
             self.keys.push(bits);
-            let sub = self.stack.substrate_stiffness();
-            let start = self.base_steps.len();
-            self.base_steps.resize(start + below, EMPTY_STEP);
-            let steps = &mut self.base_steps[start..];
-            let base_k = self.stack.up(q, self.varied + 1, sub, steps);
-            let c = &self.stack.consts[self.varied];
-            let face = Face::new(c, scale(&base_k, c.inv_two_g));
+            self.base_steps
+                .resize(self.base_steps.len() + below, EMPTY_STEP);
             self.upper_steps
                 .resize(self.upper_steps.len() + above, EMPTY_STEP);
             self.interfaces
                 .resize(self.interfaces.len() + n, (0.0, 0.0));
             self.nodes.push(Node {
-                face,
+                face: EMPTY_FACE,
+                based: false,
+                stepped: false,
                 generation: 0,
                 fg_generation: 0,
                 s: 0.0,
@@ -873,21 +905,50 @@ impl StackCache {
         i
     }
 
-    /// S of the stack served at node `i` (wavenumber q), with its steps above the base.
+    /// S of the stack served at node `i` (wavenumber q): the top layer's half-space's where
+    /// q·d_1 > [`X_FAR`] ([`Stack::s_far`]: the same value to the last bit), else from its steps
+    /// above the base.
     #[inline(never)]
     fn compute_s(&mut self, i: usize, q: f64) {
-        let above = self.varied + 1;
         let node = &mut self.nodes[i];
+        node.generation = self.generation;
+        node.stepped = false;
+        if q * self.stack.layers[0].thickness > X_FAR {
+            node.s = self.s_far;
+        } else {
+            self.compute_steps(i, q);
+            let node = &mut self.nodes[i];
+            node.s = self.stack.s_of(node.u0);
+        }
+    }
+
+    /// The steps above the base of the stack served at node `i` (wavenumber q) and the top
+    /// displacement `u0` (the base formed first if it is not yet).
+    fn compute_steps(&mut self, i: usize, q: f64) {
+        let (n, above) = (self.stack.layers.len(), self.varied + 1);
+        let below = n - above;
+        let node = &mut self.nodes[i];
+        if !node.based {
+            let sub = self.stack.substrate_stiffness();
+            let steps = &mut self.base_steps[i * below..(i + 1) * below];
+            let base_k = self.stack.up(q, above, sub, steps);
+            let c = &self.stack.consts[self.varied];
+            node.face = Face::new(c, scale(&base_k, c.inv_two_g));
+            node.based = true;
+        }
         let upper = &mut self.upper_steps[i * above..(i + 1) * above];
         self.stack.up_from_face(q, &node.face, upper);
         node.u0 = self.stack.top_displacement(&upper[0], [0.0, 1.0]);
-        node.s = self.stack.s_of(node.u0);
-        node.generation = self.generation;
+        node.stepped = true;
     }
 
-    /// Every (f_k, g_k) of the stack served at node `i`, whose S is computed: the downward pass.
+    /// Every (f_k, g_k) of the stack served at node `i`, whose S is computed: the downward pass
+    /// (after the steps above the base, if S was the far form).
     #[inline(never)]
     fn compute_interfaces(&mut self, i: usize) {
+        if !self.nodes[i].stepped {
+            self.compute_steps(i, f64::from_bits(self.keys[i]));
+        }
         let n = self.stack.layers.len();
         let (above, below) = (self.varied + 1, n - self.varied - 1);
         let node = &mut self.nodes[i];
@@ -899,6 +960,13 @@ impl StackCache {
         node.fg_generation = self.generation;
     }
 }
+
+/// A placeholder face, overwritten before it is read.
+const EMPTY_FACE: Face = Face {
+    kb: I2,
+    r0: I2,
+    b0: I2,
+};
 
 /// A placeholder step, overwritten before it is read.
 const EMPTY_STEP: Step = Step::Thick {

@@ -337,7 +337,7 @@ impl KernelTable {
     }
 
     /// f² and g² at x = qd with y = ln x (S⁻² not evaluated).
-    #[inline]
+    #[inline(always)]
     pub fn interface(&self, x: f64, y: f64) -> (f64, f64) {
         if x > X_FAR {
             if x > QD_BULK {

@@ -326,3 +326,85 @@ fn stack_cache_equals_the_exact_recursion() {
         }
     }
 }
+
+/// A layer that changes material, not only thickness, between the stacks a `StackCache` serves
+/// (as the corners of a robust check or a library caller reusing an engine may ask): the values
+/// are still the exact recursion's, to the last bit. The varied layer's material enters the
+/// face to the base the cache keeps per node, so a new material there must not reuse it.
+#[test]
+fn stack_cache_follows_a_material_change() {
+    use coatcheck::layer::stack::StackCache;
+    let steel = el(2e11, 0.3);
+    let stack = |e_top: f64, nu_top: f64, d_top: f64, e_mid: f64| {
+        Stack::new(
+            vec![layer(e_top, nu_top, d_top), layer(e_mid, 0.35, 1e-5)],
+            steel,
+        )
+        .unwrap()
+    };
+    let first = stack(1e6, 0.5, 1e-5, 3e9);
+    let mut cache = StackCache::new(first.clone());
+    // The d_min search's pattern (the top layer varied), then other materials at each depth.
+    let served = [
+        stack(1e6, 0.5, 2e-5, 3e9),
+        stack(2e6, 0.5, 2e-5, 3e9),
+        stack(2e6, 0.3, 5e-6, 3e9),
+        stack(2e6, 0.3, 5e-6, 1e10),
+        stack(1e6, 0.5, 5e-6, 1e10),
+    ];
+    for s in std::iter::once(&first).chain(&served) {
+        cache.serve(s);
+        for q in (0..=32).map(|i| 10f64.powf(3.0 + 0.25 * f64::from(i))) {
+            let want = s.response(q);
+            let (got_s, got) = cache.response(q);
+            assert_eq!(got_s.to_bits(), want.s.to_bits(), "S at q {q}, {s:?}");
+            for (a, b) in got.iter().zip(&want.interfaces) {
+                assert_eq!(a.0.to_bits(), b.0.to_bits(), "f at q {q}, {s:?}");
+                assert_eq!(a.1.to_bits(), b.1.to_bits(), "g at q {q}, {s:?}");
+            }
+        }
+    }
+}
+
+/// Where the top layer is far thicker than the wavelength (q·d_1 > 40) the cache takes S as the
+/// top layer's half-space's without the layers below: the recursion's S to the last bit, for
+/// top layers of ν = 0 … ½ on bases from 1e-8 to 1e8 times as stiff (one or three layers
+/// below, thin and thick at that q, a soft layer between stiff ones); and the interface kernels
+/// asked for there afterwards are the recursion's too.
+#[test]
+fn far_top_layer_gives_the_recursions_s() {
+    use coatcheck::layer::stack::StackCache;
+    for nu in [0.0, 0.3, 0.45, 0.49985, 0.5] {
+        for ratio in [1e-8, 1e-3, 1.0, 1e3, 1e8] {
+            for below in [
+                vec![layer(ratio, 0.35, 1e-3)],
+                vec![
+                    layer(ratio, 0.2, 1e-6),
+                    layer(ratio * 1e-8, 0.5, 0.02),
+                    layer(ratio, 0.49, 3.0),
+                ],
+            ] {
+                let mut layers = vec![layer(1.0, nu, 1.0)];
+                layers.extend(below);
+                let stack = Stack::new(layers, el(ratio * 10.0, 0.3)).unwrap();
+                let mut cache = StackCache::new(stack.clone());
+                for q in (0..=60).map(|i| 40.000001 * 10f64.powf(f64::from(i) / 24.0)) {
+                    let want = stack.response(q);
+                    assert_eq!(
+                        cache.s(q).to_bits(),
+                        want.s.to_bits(),
+                        "S at q {q}, {stack:?}"
+                    );
+                    let (s, got) = cache.response(q);
+                    assert_eq!(s.to_bits(), want.s.to_bits());
+                    for (a, b) in got.iter().zip(&want.interfaces) {
+                        assert_eq!(
+                            (a.0.to_bits(), a.1.to_bits()),
+                            (b.0.to_bits(), b.1.to_bits())
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

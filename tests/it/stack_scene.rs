@@ -511,3 +511,18 @@ fn interface_kernels_decrease_beyond_the_cut() {
         }
     }
 }
+
+/// One engine evaluating stacks whose top layer changes thickness and then modulus (its
+/// per-node cache reused between them) gives what fresh engines give, to the last bit.
+#[test]
+fn engine_reused_across_materials_equals_fresh_engines() {
+    let steel = el(2e11, 0.3);
+    let reused = Engine::new(&paper_spectrum(), Settings::default());
+    for (e_top, d_top) in [(1e6, 10e-6), (1e6, 20e-6), (4e6, 20e-6), (4e6, 10e-6)] {
+        let s = layers(&[(e_top, 0.5, d_top), (3e9, 0.35, 10e-6)], steel);
+        let got = reused.evaluate_stack(&s, 1e5, Request::all()).unwrap();
+        let fresh = Engine::new(&paper_spectrum(), Settings::default());
+        let want = fresh.evaluate_stack(&s, 1e5, Request::all()).unwrap();
+        assert_eq!(got, want, "top layer E = {e_top}, d = {d_top}");
+    }
+}
