@@ -164,7 +164,7 @@ impl Surface {
         let (nx, ny) = (self.nx, self.ny);
         let (qx, qy) = wavenumbers(nx, ny, self.dx, self.dy);
         let n = self.len() as f64;
-        let s = Fft2::new(nx, ny).spectrum_sum(&self.heights, |kx, col| {
+        let s = Fft2::<f64>::new(nx, ny).spectrum_sum(&self.heights, |kx, col| {
             half_spectrum_weight(kx, nx)
                 * col
                     .iter()
@@ -589,7 +589,7 @@ fn solve_from_dyn(
     let mut contact: Vec<bool> = p.iter().map(|&v| v > 0.0).collect();
     let (mut graw, mut t, mut r) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let mut z = vec![0.0; n];
-    let precond = precond::Preconditioner::new(&kernel, nx, ny);
+    let mut precond = precond::Preconditioner::new(&kernel, nx, ny);
     let (mut g_old, mut restarts, mut iterations) = (1.0, 0usize, 0);
     // u is recomputed by FFT unless the last update changed few points beyond the linear one:
     // then u ← s(u − step·r + Σ δ_j G_j) is exact (δ_j: the change at a clamped or re-admitted
@@ -618,7 +618,7 @@ fn solve_from_dyn(
         }
         iterations += 1;
         // r is free until K t is formed: it holds the masked gap the preconditioner filters.
-        let (gz, zbar) = precond.apply(&mut plan, (&graw, &contact, &sums), &mut r, &mut z);
+        let (gz, zbar) = precond.apply((&graw, &contact, &sums), &mut r, &mut z);
         let mut beta = if iterations > 1 && g_old > 0.0 {
             gz / g_old
         } else {
