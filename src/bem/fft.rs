@@ -20,7 +20,7 @@ use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
 use rustfft::num_traits::Zero;
 use rustfft::{Fft, FftNum, FftPlanner};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 /// Target size of a strip (bytes): its transpose buffer stays in a core's L2 cache.
 const STRIP_BYTES: usize = 1 << 18;
@@ -110,6 +110,69 @@ pub(crate) struct Fft2<T: Real = f64> {
     /// Half spectrum, strip-major: strip s (columns s·width.., width w) holds (y, j) at
     /// `s·stride + y·w + j`.
     spec: Vec<Complex<T>>,
+    /// Work buffers of the parallel tasks, kept from call to call (see [`Lease`]).
+    pool: Mutex<Vec<Work<T>>>,
+}
+
+/// One task's work buffers: a real row, a block of [`rows_per_chunk`] half-spectrum rows, a
+/// strip's transpose buffer and the transforms' scratch (their contents never carry over).
+struct Work<T> {
+    row: Vec<T>,
+    block: Vec<Complex<T>>,
+    cols: Vec<Complex<T>>,
+    scratch: Vec<Complex<T>>,
+}
+
+/// The lengths of the buffers of a [`Work`].
+#[derive(Clone, Copy)]
+struct WorkShape {
+    row: usize,
+    block: usize,
+    cols: usize,
+    scratch: usize,
+}
+
+impl WorkShape {
+    fn make<T: Real>(self) -> Work<T> {
+        Work {
+            row: vec![T::zero(); self.row],
+            block: vec![zero(); self.block],
+            cols: vec![zero(); self.cols],
+            scratch: vec![zero(); self.scratch],
+        }
+    }
+}
+
+/// A [`Work`] taken from a plan's pool for one rayon task (made if the pool is empty) and
+/// returned to it when the task ends, so that the buffers are allocated and first written once
+/// per thread and plan, not once per task and call.
+struct Lease<'a, T> {
+    pool: &'a Mutex<Vec<Work<T>>>,
+    work: Option<Work<T>>,
+}
+
+impl<'a, T: Real> Lease<'a, T> {
+    fn take(pool: &'a Mutex<Vec<Work<T>>>, make: impl FnOnce() -> Work<T>) -> Self {
+        let work = pool.lock().ok().and_then(|mut p| p.pop());
+        Self {
+            pool,
+            work: Some(work.unwrap_or_else(make)),
+        }
+    }
+
+    fn get(&mut self) -> &mut Work<T> {
+        self.work
+            .as_mut()
+            .expect("a lease holds its work until dropped")
+    }
+}
+
+impl<T> Drop for Lease<'_, T> {
+    fn drop(&mut self) {
+        if let (Some(work), Ok(mut pool)) = (self.work.take(), self.pool.lock()) {
+            pool.push(work);
+        }
+    }
 }
 
 impl<T: Real> Fft2<T> {
@@ -142,6 +205,22 @@ impl<T: Real> Fft2<T> {
             col_fwd: cp.plan_fft_forward(ny),
             col_inv: cp.plan_fft_inverse(ny),
             spec: vec![zero(); nxc.div_ceil(width) * (width * ny + width)],
+            pool: Mutex::new(Vec::new()),
+        }
+    }
+
+    /// The lengths of a task's work buffers (see [`Work`]).
+    fn work_shape(&self) -> WorkShape {
+        WorkShape {
+            row: self.nx,
+            block: self.nxc * rows_per_chunk(self.nx),
+            cols: self.width * (self.ny + COLUMN_PAD),
+            scratch: self
+                .row_fwd
+                .get_scratch_len()
+                .max(self.row_inv.get_scratch_len())
+                .max(self.col_fwd.get_inplace_scratch_len())
+                .max(self.col_inv.get_inplace_scratch_len()),
         }
     }
 
@@ -296,6 +375,7 @@ impl<T: Real> Fft2<T> {
     {
         let (nx, ny, nxc, width) = (self.nx, self.ny, self.nxc, self.width);
         let per_task = rows_per_chunk(nx);
+        let shape = self.work_shape();
         debug_assert_eq!(chunks.len(), ny.div_ceil(per_task));
         // Each task's rows occupy one contiguous run of every strip.
         let mut tasks: Vec<Vec<&mut [Complex<T>]>> = (0..ny.div_ceil(per_task))
@@ -311,7 +391,9 @@ impl<T: Real> Fft2<T> {
             }
         }
         let mut results = vec![[0.0; A]; ny];
-        let row_fwd = &self.row_fwd;
+        let (row_fwd, pool) = (&self.row_fwd, &self.pool);
+        let scratch_len = row_fwd.get_scratch_len();
+        let make = || shape.make();
         // A task transforms its rows into a block that stays in cache, then copies the block
         // to the strips one contiguous run at a time.
         tasks
@@ -320,14 +402,15 @@ impl<T: Real> Fft2<T> {
             .zip(results.par_chunks_mut(per_task))
             .enumerate()
             .for_each_init(
-                || {
-                    (
-                        vec![T::zero(); nx],
-                        vec![zero(); nxc * per_task],
-                        row_fwd.make_scratch_vec(),
-                    )
-                },
-                |(buf, block, scratch), (ci, ((runs, mut chunk), res))| {
+                || Lease::take(pool, make),
+                |lease, (ci, ((runs, mut chunk), res))| {
+                    let Work {
+                        row: buf,
+                        block,
+                        scratch,
+                        ..
+                    } = lease.get();
+                    let scratch = &mut scratch[..scratch_len];
                     let rows = res.len();
                     for (k, (out, row)) in
                         res.iter_mut().zip(block.chunks_exact_mut(nxc)).enumerate()
@@ -355,28 +438,32 @@ impl<T: Real> Fft2<T> {
     {
         let (ny, nxc, width) = (self.ny, self.nxc, self.width);
         let (col_fwd, col_inv) = (&self.col_fwd, &self.col_inv);
-        let scratch_len = col_fwd
-            .get_inplace_scratch_len()
-            .max(col_inv.get_inplace_scratch_len());
+        let fwd_len = col_fwd.get_inplace_scratch_len();
+        let inv_len = col_inv.get_inplace_scratch_len();
         // Columns of the transpose buffer are padded apart for the same reason as the strips.
         let cs = ny + COLUMN_PAD;
+        let (shape, pool) = (self.work_shape(), &self.pool);
+        let make = || shape.make();
         self.spec
             .par_chunks_mut(self.stride)
             .enumerate()
             .for_each_init(
-                || (vec![zero(); width * cs], vec![zero(); scratch_len]),
-                |(buf, scratch), (s, strip)| {
+                || Lease::take(pool, make),
+                |lease, (s, strip)| {
+                    let Work {
+                        cols: buf, scratch, ..
+                    } = lease.get();
                     let w = width.min(nxc - s * width);
                     let strip = &mut strip[..w * ny];
                     transpose(strip, w, ny, cs, buf);
                     for (j, col) in buf.chunks_exact_mut(cs).take(w).enumerate() {
                         let col = &mut col[..ny];
                         if ny > 1 {
-                            col_fwd.process_with_scratch(col, scratch);
+                            col_fwd.process_with_scratch(col, &mut scratch[..fwd_len]);
                         }
                         multiply(s * width + j, col);
                         if ny > 1 {
-                            col_inv.process_with_scratch(col, scratch);
+                            col_inv.process_with_scratch(col, &mut scratch[..inv_len]);
                         }
                     }
                     for (y, dst) in strip.chunks_exact_mut(w).enumerate() {
@@ -402,8 +489,10 @@ impl<T: Real> Fft2<T> {
     {
         let (nx, ny, nxc, width, stride) = (self.nx, self.ny, self.nxc, self.width, self.stride);
         let even = nx.is_multiple_of(2);
-        let spec = &self.spec;
-        let row_inv = &self.row_inv;
+        let (spec, row_inv, pool) = (&self.spec, &self.row_inv, &self.pool);
+        let scratch_len = row_inv.get_scratch_len();
+        let shape = self.work_shape();
+        let make = || shape.make();
         let per_task = rows_per_chunk(nx);
         let mut results = vec![[0.0; B]; ny];
         // A task copies its rows' contiguous run of every strip into a block that stays in
@@ -413,14 +502,15 @@ impl<T: Real> Fft2<T> {
             .zip(results.par_chunks_mut(per_task))
             .enumerate()
             .for_each_init(
-                || {
-                    (
-                        vec![zero(); nxc * per_task],
-                        vec![T::zero(); nx],
-                        row_inv.make_scratch_vec(),
-                    )
-                },
-                |(block, tmp, scratch), (ci, (chunk, res))| {
+                || Lease::take(pool, make),
+                |lease, (ci, (chunk, res))| {
+                    let Work {
+                        row: tmp,
+                        block,
+                        scratch,
+                        ..
+                    } = lease.get();
+                    let scratch = &mut scratch[..scratch_len];
                     let rows = res.len();
                     for s in 0..nxc.div_ceil(width) {
                         let w = width.min(nxc - s * width);
