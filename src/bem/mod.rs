@@ -919,7 +919,10 @@ where
         .par_chunks_mut(ny)
         .enumerate()
         .try_for_each(|(kx, col)| {
-            for (ky, k) in col.iter_mut().enumerate() {
+            // qy at ky and ny − ky are opposite (exactly: the same magnitude is rounded), so
+            // |q| and the compliance are the same: evaluated once, for ky ≤ ny/2.
+            let (low, high) = col.split_at_mut(ny / 2 + 1);
+            for (ky, k) in low.iter_mut().enumerate() {
                 if kx == 0 && ky == 0 {
                     continue;
                 }
@@ -932,6 +935,9 @@ where
                     });
                 }
                 *k = c * inv_n;
+            }
+            for (i, k) in high.iter_mut().enumerate() {
+                *k = low[ny - (ny / 2 + 1 + i)];
             }
             Ok(())
         })?;
@@ -1160,6 +1166,29 @@ mod tests {
         let peak = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (a, b) in u.iter().zip(&want) {
             assert!((a - b).abs() < 1e-13 * peak, "{a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn kernel_grid_is_the_compliance_at_every_wavevector() {
+        // Odd and even sides: every entry is the compliance at its own |q| (times 1/N), bit for
+        // bit, the mirrored half of each column included.
+        for (nx, ny) in [(6, 5), (5, 8), (4, 1), (3, 2)] {
+            let s = Surface::new(vec![0.0; nx * ny], nx, ny, 1e-6, 3e-6).unwrap();
+            let compliance = |q: f64| 2.0 / q + 1e-9 * q.sqrt();
+            let kernel = kernel_grid(&s, &compliance).unwrap();
+            let (qx, qy) = wavenumbers(nx, ny, s.dx, s.dy);
+            let inv_n = 1.0 / (nx * ny) as f64;
+            for kx in 0..nx / 2 + 1 {
+                for ky in 0..ny {
+                    let want = if kx == 0 && ky == 0 {
+                        0.0
+                    } else {
+                        compliance(qx[kx].hypot(qy[ky])) * inv_n
+                    };
+                    assert_eq!(kernel[kx * ny + ky].to_bits(), want.to_bits(), "{nx}x{ny}");
+                }
+            }
         }
     }
 
