@@ -972,13 +972,16 @@ where
     let n = nx * ny;
     let nxc = nx / 2 + 1;
     let (qx, qy) = wavenumbers(nx, ny, solution.dx, solution.dy);
-    let mut fg = vec![(0.0, 0.0); nxc * ny];
+    // (f, g, |q|) at every half-spectrum wavevector; as in `kernel_grid`, ky and ny − ky have the
+    // same |q|, so the transfer functions are evaluated for ky ≤ ny/2 and copied.
+    let mut fg = vec![(0.0, 0.0, 0.0); nxc * ny];
     fg.par_chunks_mut(ny)
         .enumerate()
         .try_for_each(|(kx, col)| {
-            for (ky, v) in col.iter_mut().enumerate() {
+            let (low, high) = col.split_at_mut(ny / 2 + 1);
+            for (ky, v) in low.iter_mut().enumerate() {
                 if kx == 0 && ky == 0 {
-                    *v = (1.0, 0.0);
+                    *v = (1.0, 0.0, 0.0);
                     continue;
                 }
                 let q = qx[kx].hypot(qy[ky]);
@@ -989,7 +992,10 @@ where
                         detail: format!("f = {f}, g = {g} at q = {q:e} 1/m"),
                     });
                 }
-                *v = (f, g);
+                *v = (f, g, q);
+            }
+            for (i, v) in high.iter_mut().enumerate() {
+                *v = low[ny - (ny / 2 + 1 + i)];
             }
             Ok(())
         })?;
@@ -1002,15 +1008,14 @@ where
     let p = &solution.pressure;
     let mut normal = vec![0.0; n];
     plan.filter(p, &mut normal, |kx, col| {
-        for (c, (f, _)) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]) {
+        for (c, (f, _, _)) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]) {
             *c *= f * inv_n;
         }
     });
     let mut shear_x = vec![0.0; n];
     plan.filter(p, &mut shear_x, |kx, col| {
-        for (ky, (c, (_, g))) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]).enumerate() {
-            let q = qx[kx].hypot(qy[ky]);
-            *c *= if q == 0.0 || Some(kx) == nyq_x {
+        for (c, (_, g, q)) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]) {
+            *c *= if *q == 0.0 || Some(kx) == nyq_x {
                 Complex64::new(0.0, 0.0)
             } else {
                 Complex64::new(0.0, g * qx[kx] / q * inv_n)
@@ -1019,9 +1024,8 @@ where
     });
     let mut shear_y = vec![0.0; n];
     plan.filter(p, &mut shear_y, |kx, col| {
-        for (ky, (c, (_, g))) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]).enumerate() {
-            let q = qx[kx].hypot(qy[ky]);
-            *c *= if q == 0.0 || Some(ky) == nyq_y {
+        for (ky, (c, (_, g, q))) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]).enumerate() {
+            *c *= if *q == 0.0 || Some(ky) == nyq_y {
                 Complex64::new(0.0, 0.0)
             } else {
                 Complex64::new(0.0, g * qy[ky] / q * inv_n)
