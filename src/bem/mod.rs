@@ -560,13 +560,14 @@ fn solve_from_dyn(
             *c *= *k;
         }
     };
+    let (mut graw, mut t, mut r) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     // The periodic real-space influence matrix's first column: the response to a unit pressure
-    // at pixel 0 (its mean is zero, as the kernel's q = 0 entry).
+    // at pixel 0 (its mean is zero, as the kernel's q = 0 entry); r holds the unit pressure
+    // (it is free until the iteration starts).
     let mut green = vec![0.0; n];
-    let mut unit = vec![0.0; n];
-    unit[0] = 1.0;
-    plan.filter(&unit, &mut green, multiply);
-    drop(unit);
+    r[0] = 1.0;
+    plan.filter(&r, &mut green, multiply);
+    r[0] = 0.0;
     let field = Field {
         nx,
         ny,
@@ -587,7 +588,6 @@ fn solve_from_dyn(
     };
     drop(coarse_start);
     let mut contact: Vec<bool> = p.iter().map(|&v| v > 0.0).collect();
-    let (mut graw, mut t, mut r) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let mut z = vec![0.0; n];
     let mut precond = precond::Preconditioner::new(&kernel, nx, ny);
     let (mut g_old, mut restarts, mut iterations) = (1.0, 0usize, 0);

@@ -37,17 +37,14 @@ impl Preconditioner {
     /// From the kernel grid of the solver (K(q)/N on the transposed half spectrum, 0 at q = 0).
     pub(super) fn new(kernel: &[f64], nx: usize, ny: usize) -> Self {
         let inv_n = 1.0 / (nx * ny) as f64;
-        let multiplier: Vec<f64> = kernel
-            .iter()
-            .map(|&k| if k > 0.0 { inv_n * inv_n / k } else { 0.0 })
-            .collect();
-        let diagonal = multiplier
+        let m = |k: f64| if k > 0.0 { inv_n * inv_n / k } else { 0.0 };
+        let diagonal = kernel
             .chunks_exact(ny)
             .enumerate()
-            .map(|(kx, col)| half_spectrum_weight(kx, nx) * col.iter().sum::<f64>())
+            .map(|(kx, col)| half_spectrum_weight(kx, nx) * col.iter().map(|&k| m(k)).sum::<f64>())
             .sum();
         Self {
-            multiplier: multiplier.iter().map(|&m| m as f32).collect(),
+            multiplier: kernel.iter().map(|&k| m(k) as f32).collect(),
             ny,
             diagonal,
             plan: Fft2::new(nx, ny),
