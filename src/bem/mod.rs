@@ -164,7 +164,7 @@ impl Surface {
         let (nx, ny) = (self.nx, self.ny);
         let (qx, qy) = wavenumbers(nx, ny, self.dx, self.dy);
         let n = self.len() as f64;
-        let s = Fft2::new(nx, ny).spectrum_sum(&self.heights, |kx, col| {
+        let s = Fft2::<f64>::new(nx, ny).spectrum_sum(&self.heights, |kx, col| {
             half_spectrum_weight(kx, nx)
                 * col
                     .iter()
@@ -560,13 +560,14 @@ fn solve_from_dyn(
             *c *= *k;
         }
     };
+    let (mut graw, mut t, mut r) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     // The periodic real-space influence matrix's first column: the response to a unit pressure
-    // at pixel 0 (its mean is zero, as the kernel's q = 0 entry).
+    // at pixel 0 (its mean is zero, as the kernel's q = 0 entry); r holds the unit pressure
+    // (it is free until the iteration starts).
     let mut green = vec![0.0; n];
-    let mut unit = vec![0.0; n];
-    unit[0] = 1.0;
-    plan.filter(&unit, &mut green, multiply);
-    drop(unit);
+    r[0] = 1.0;
+    plan.filter(&r, &mut green, multiply);
+    r[0] = 0.0;
     let field = Field {
         nx,
         ny,
@@ -587,9 +588,8 @@ fn solve_from_dyn(
     };
     drop(coarse_start);
     let mut contact: Vec<bool> = p.iter().map(|&v| v > 0.0).collect();
-    let (mut graw, mut t, mut r) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let mut z = vec![0.0; n];
-    let precond = precond::Preconditioner::new(&kernel, nx, ny);
+    let mut precond = precond::Preconditioner::new(&kernel, nx, ny);
     let (mut g_old, mut restarts, mut iterations) = (1.0, 0usize, 0);
     // u is recomputed by FFT unless the last update changed few points beyond the linear one:
     // then u ← s(u − step·r + Σ δ_j G_j) is exact (δ_j: the change at a clamped or re-admitted
@@ -618,7 +618,7 @@ fn solve_from_dyn(
         }
         iterations += 1;
         // r is free until K t is formed: it holds the masked gap the preconditioner filters.
-        let (gz, zbar) = precond.apply(&mut plan, (&graw, &contact, &sums), &mut r, &mut z);
+        let (gz, zbar) = precond.apply((&graw, &contact, &sums), &mut r, &mut z);
         let mut beta = if iterations > 1 && g_old > 0.0 {
             gz / g_old
         } else {
@@ -919,7 +919,10 @@ where
         .par_chunks_mut(ny)
         .enumerate()
         .try_for_each(|(kx, col)| {
-            for (ky, k) in col.iter_mut().enumerate() {
+            // qy at ky and ny − ky are opposite (exactly: the same magnitude is rounded), so
+            // |q| and the compliance are the same: evaluated once, for ky ≤ ny/2.
+            let (low, high) = col.split_at_mut(ny / 2 + 1);
+            for (ky, k) in low.iter_mut().enumerate() {
                 if kx == 0 && ky == 0 {
                     continue;
                 }
@@ -932,6 +935,9 @@ where
                     });
                 }
                 *k = c * inv_n;
+            }
+            for (i, k) in high.iter_mut().enumerate() {
+                *k = low[ny - (ny / 2 + 1 + i)];
             }
             Ok(())
         })?;
@@ -966,13 +972,16 @@ where
     let n = nx * ny;
     let nxc = nx / 2 + 1;
     let (qx, qy) = wavenumbers(nx, ny, solution.dx, solution.dy);
-    let mut fg = vec![(0.0, 0.0); nxc * ny];
+    // (f, g, |q|) at every half-spectrum wavevector; as in `kernel_grid`, ky and ny − ky have the
+    // same |q|, so the transfer functions are evaluated for ky ≤ ny/2 and copied.
+    let mut fg = vec![(0.0, 0.0, 0.0); nxc * ny];
     fg.par_chunks_mut(ny)
         .enumerate()
         .try_for_each(|(kx, col)| {
-            for (ky, v) in col.iter_mut().enumerate() {
+            let (low, high) = col.split_at_mut(ny / 2 + 1);
+            for (ky, v) in low.iter_mut().enumerate() {
                 if kx == 0 && ky == 0 {
-                    *v = (1.0, 0.0);
+                    *v = (1.0, 0.0, 0.0);
                     continue;
                 }
                 let q = qx[kx].hypot(qy[ky]);
@@ -983,7 +992,10 @@ where
                         detail: format!("f = {f}, g = {g} at q = {q:e} 1/m"),
                     });
                 }
-                *v = (f, g);
+                *v = (f, g, q);
+            }
+            for (i, v) in high.iter_mut().enumerate() {
+                *v = low[ny - (ny / 2 + 1 + i)];
             }
             Ok(())
         })?;
@@ -996,15 +1008,14 @@ where
     let p = &solution.pressure;
     let mut normal = vec![0.0; n];
     plan.filter(p, &mut normal, |kx, col| {
-        for (c, (f, _)) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]) {
+        for (c, (f, _, _)) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]) {
             *c *= f * inv_n;
         }
     });
     let mut shear_x = vec![0.0; n];
     plan.filter(p, &mut shear_x, |kx, col| {
-        for (ky, (c, (_, g))) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]).enumerate() {
-            let q = qx[kx].hypot(qy[ky]);
-            *c *= if q == 0.0 || Some(kx) == nyq_x {
+        for (c, (_, g, q)) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]) {
+            *c *= if *q == 0.0 || Some(kx) == nyq_x {
                 Complex64::new(0.0, 0.0)
             } else {
                 Complex64::new(0.0, g * qx[kx] / q * inv_n)
@@ -1013,9 +1024,8 @@ where
     });
     let mut shear_y = vec![0.0; n];
     plan.filter(p, &mut shear_y, |kx, col| {
-        for (ky, (c, (_, g))) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]).enumerate() {
-            let q = qx[kx].hypot(qy[ky]);
-            *c *= if q == 0.0 || Some(ky) == nyq_y {
+        for (ky, (c, (_, g, q))) in col.iter_mut().zip(&fg[kx * ny..(kx + 1) * ny]).enumerate() {
+            *c *= if *q == 0.0 || Some(ky) == nyq_y {
                 Complex64::new(0.0, 0.0)
             } else {
                 Complex64::new(0.0, g * qy[ky] / q * inv_n)
@@ -1160,6 +1170,29 @@ mod tests {
         let peak = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (a, b) in u.iter().zip(&want) {
             assert!((a - b).abs() < 1e-13 * peak, "{a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn kernel_grid_is_the_compliance_at_every_wavevector() {
+        // Odd and even sides: every entry is the compliance at its own |q| (times 1/N), bit for
+        // bit, the mirrored half of each column included.
+        for (nx, ny) in [(6, 5), (5, 8), (4, 1), (3, 2)] {
+            let s = Surface::new(vec![0.0; nx * ny], nx, ny, 1e-6, 3e-6).unwrap();
+            let compliance = |q: f64| 2.0 / q + 1e-9 * q.sqrt();
+            let kernel = kernel_grid(&s, &compliance).unwrap();
+            let (qx, qy) = wavenumbers(nx, ny, s.dx, s.dy);
+            let inv_n = 1.0 / (nx * ny) as f64;
+            for kx in 0..nx / 2 + 1 {
+                for ky in 0..ny {
+                    let want = if kx == 0 && ky == 0 {
+                        0.0
+                    } else {
+                        compliance(qx[kx].hypot(qy[ky])) * inv_n
+                    };
+                    assert_eq!(kernel[kx * ny + ky].to_bits(), want.to_bits(), "{nx}x{ny}");
+                }
+            }
         }
     }
 

@@ -85,7 +85,7 @@ where
     let scale = mu / n as f64;
     let nyq_x = nx.is_multiple_of(2).then_some(nx / 2);
     let nyq_y = ny.is_multiple_of(2).then_some(ny / 2);
-    let mut plan = Fft2::new(nx, ny);
+    let mut plan = Fft2::<f64>::new(nx, ny);
     let mut out = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
     for (j, field) in out.iter_mut().enumerate() {
         plan.filter(pressure, field, |kx, col| {

@@ -59,12 +59,12 @@ fn stack(layers: Vec<StackLayer>, thickness_of: usize, checks: Checks) -> StackD
     }
 }
 
-/// |a − b| ≤ tol·max(|a|, |b|).
 /// How far two exact d_min searches on kernels that agree to ~1e-13 may differ (relative): the
 /// solver's tolerance (1e-6 of the gap) times the bracket's width ([`coatcheck::check::D_MIN_RTOL`],
 /// 2e-3), with a factor 10 of slack.
 const D_MIN_SOLVE_RTOL: f64 = 2e-8;
 
+/// |a − b| ≤ tol·max(|a|, |b|).
 fn close(a: f64, b: f64, tol: f64, what: &str) {
     assert!(
         a == b || (a - b).abs() <= tol * a.abs().max(b.abs()),
@@ -73,9 +73,11 @@ fn close(a: f64, b: f64, tol: f64, what: &str) {
 }
 
 /// A one-layer stack's exact minimum thickness is the film's: the same search (the same
-/// thicknesses solved, warm-started alike), d_min, its bracket and grid errors and the
-/// governing check to 1e-12 relative (the stack's kernels and the film's closed forms agree to
-/// ~1e-13, and a search that takes the same branches moves its result by as much).
+/// thicknesses solved, warm-started alike) and governing check, d_min to [`D_MIN_SOLVE_RTOL`]
+/// and its bracket and grid errors to 1e-9 relative. The stack's kernels and the film's closed
+/// forms agree to ~1e-13, but the solver's preconditioner rounds in single precision, so kernels
+/// that differ by an ulp can take different iteration paths to the same tolerance: the solves
+/// then agree to the solver's tolerance, not to the kernels' difference.
 #[test]
 fn one_layer_stack_min_thickness_is_the_films() {
     let s = surface(5);
@@ -98,7 +100,7 @@ fn one_layer_stack_min_thickness_is_the_films() {
     let got = stack_min_thickness::min_thickness(&s, &one, 0.0, &settings).unwrap();
     let (w, g) = (want.thickness().unwrap(), got.thickness().unwrap());
     assert!(!want.search.all_pass_to_floor, "{want:?}");
-    close(g.value, w.value, 1e-12, "d_min");
+    close(g.value, w.value, D_MIN_SOLVE_RTOL, "d_min");
     close(g.err, w.err, 1e-9, "d_min error");
     close(got.grid_err, want.grid_err, 1e-9, "grid error");
     let (ws, gs) = (
