@@ -188,6 +188,8 @@ impl ShearVector {
         let mut x = hi;
         let mut step = f64::INFINITY;
         let mut at = self.ln_exceedance(x);
+        // |ln P − ln ε| at x, unknown after a last step (P is not evaluated there).
+        let mut residual = 0.0;
         for _ in 0..200 {
             let f = at.ln_p.value - target;
             if f > 0.0 {
@@ -198,21 +200,26 @@ impl ShearVector {
             let mut next = phi_step(at, x, phi_eps).unwrap_or(x - f / at.slope);
             // A step within the tolerance is the last one, taken as it is: x may be an end of
             // the bracket (f rounds to its sign there), and the step just across it is not a
-            // reason to bisect.
+            // reason to bisect. P is not evaluated at its end: Newton's method converges
+            // quadratically there, so the step bounds that end's distance from the root, and
+            // P's error at x stands for its error a step away.
             let last = (next - x).abs() <= PEAK_RTOL * x;
             if !(last || next > lo && next < hi) {
                 next = 0.5 * (lo + hi);
             }
             step = (next - x).abs();
             x = next;
+            if last {
+                residual = 0.0;
+                break;
+            }
             at = self.ln_exceedance(x);
+            residual = (at.ln_p.value - target).abs();
             if step <= PEAK_RTOL * x || hi - lo <= PEAK_RTOL * x {
                 break;
             }
         }
-        let err = (at.ln_p.value - target).abs().max(at.ln_p.err) / at.slope.abs()
-            + step.min(hi - lo)
-            + 4.0 * EPS * x;
+        let err = residual.max(at.ln_p.err) / at.slope.abs() + step.min(hi - lo) + 4.0 * EPS * x;
         let status = if err <= PEAK_TARGET_RTOL * x {
             Estimate::worst(at.ln_p.status, Termination::Converged)
         } else {
@@ -482,7 +489,11 @@ impl Polar {
     /// J·a = R a √(π/(2a)) erfcx(u) + K(u). For u < 0 (then cos θ > 0) e^{u²} moves into the exponent:
     /// J·a e^{−u²} = e^{−u²} + t·erfc(u).
     fn terms(&self, t: f64, half: Half) -> Terms {
-        let (s, c) = t.sin_cos();
+        self.terms_at(t.sin_cos(), half)
+    }
+
+    /// [`Self::terms`] from (sin t, cos t).
+    fn terms_at(&self, (s, c): (f64, f64), half: Half) -> Terms {
         let c = if half == Half::Upper { -c } else { c };
         let (al, be, r, m) = (self.alpha, self.beta, self.r, self.m);
         let a = al * c * c + be * s * s;
@@ -520,7 +531,12 @@ impl Polar {
     /// The P-integrand e^{−Q_R/2} J and the density integrand e^{−Q_R/2} at θ, scaled by their
     /// values' exponents at the peak; θ = t on the lower half, π − t on the upper.
     fn integrands(&self, t: f64, half: Half) -> [f64; 2] {
-        let t = self.terms(t, half);
+        self.integrands_at(t.sin_cos(), half)
+    }
+
+    /// [`Self::integrands`] from (sin t, cos t).
+    fn integrands_at(&self, sin_cos: (f64, f64), half: Half) -> [f64; 2] {
+        let t = self.terms_at(sin_cos, half);
         let f = (t.neg_half_q - self.ref_f).exp();
         let p = match t.fold {
             None => f * self.scale,
@@ -530,9 +546,12 @@ impl Polar {
     }
 
     /// ∫ over [a, b] of both scaled integrands by the 10-point Gauss rule ([0]) and the
-    /// 21-point Kronrod rule through its nodes ([1]), in θ or in π − θ as `half` says.
+    /// 21-point Kronrod rule through its nodes ([1]), in θ or in π − θ as `half` says. The
+    /// sines and cosines of the nodes mid ± δ come from those of mid and δ by the addition
+    /// theorems (one sin_cos per pair of nodes).
     fn panel(&self, a: f64, b: f64, which: Half) -> [[f64; 2]; 2] {
         let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+        let (sm, cm) = mid.sin_cos();
         let mut out = [[0.0; 2]; 2];
         for (i, (&x, &wk)) in KRONROD_21_NODES.iter().zip(&KRONROD_21_WEIGHTS).enumerate() {
             let wg = if i % 2 == 1 {
@@ -541,11 +560,12 @@ impl Polar {
                 0.0
             };
             let v = if x == 0.0 {
-                self.integrands(mid, which)
+                self.integrands_at((sm, cm), which)
             } else {
+                let (sd, cd) = (half * x).sin_cos();
                 let (lo, hi) = (
-                    self.integrands(mid - half * x, which),
-                    self.integrands(mid + half * x, which),
+                    self.integrands_at((sm * cd - cm * sd, cm * cd + sm * sd), which),
+                    self.integrands_at((sm * cd + cm * sd, cm * cd - sm * sd), which),
                 );
                 [lo[0] + hi[0], lo[1] + hi[1]]
             };
