@@ -626,7 +626,13 @@ fn peaks_of(m: f64, alpha: f64, beta: f64, r: f64) -> Vec<(f64, f64)> {
 /// each half sorted.
 fn cuts_around(peaks: &[(f64, f64)]) -> [Vec<f64>; 2] {
     let half_pi = 0.5 * PI;
-    let mut cuts = [vec![0.0, half_pi], vec![0.0, half_pi]];
+    // Room for the cuts around peaks down to a width of 1e−4 (16 doublings to π), so that
+    // the pushes below seldom reallocate.
+    let mut cuts = [0, 1].map(|_| {
+        let mut c = Vec::with_capacity(36);
+        c.extend([0.0, half_pi]);
+        c
+    });
     let push = |cuts: &mut [Vec<f64>; 2], t: f64, from_pi: f64| {
         if t > 0.0 && t < half_pi {
             cuts[0].push(t);
