@@ -210,15 +210,14 @@ fn inv(a: &M2) -> M2 {
 const I2: M2 = [[1.0, 0.0], [0.0, 1.0]];
 
 /// Σ|terms| / |sum|: how many times the rounding of the terms is magnified in their sum
-/// (1 for an exact zero of zero terms).
+/// (1 for an exact zero of zero terms, infinite for a zero of others). `terms` is the sum of
+/// the terms' magnitudes in the order of `sum`'s, so it is at least |sum| (rounding is
+/// monotone) and the quotient at least 1: taking the larger of it and 1 changes nothing but
+/// 0/0, which it makes 1, without a branch (the quotients of a comparison are formed side by
+/// side).
+#[inline(always)]
 fn ratio(terms: f64, sum: f64) -> f64 {
-    if sum != 0.0 {
-        terms / sum.abs()
-    } else if terms == 0.0 {
-        1.0
-    } else {
-        f64::INFINITY
-    }
+    (terms / sum.abs()).max(1.0)
 }
 
 /// The product a·b of a symmetric result: both off-diagonal entries from whichever of the two
@@ -639,36 +638,34 @@ impl Hasher for NodeHasher {
 /// A map from a wavenumber's bits to an index, hashed by [`NodeHasher`].
 pub type NodeMap = HashMap<u64, u32, BuildHasherDefault<NodeHasher>>;
 
-/// One wavenumber of a [`StackCache`]: the varied layer's face to the base below it, and S of
-/// the current stack with the top displacement it came from, valid if computed in the current
-/// `generation` (the interface kernels, kept beside, if computed in `fg_generation`).
+/// S of the stack served at one wavenumber of a [`StackCache`], valid if computed in the
+/// cache's current `generation`.
 #[derive(Debug, Clone, Copy)]
-struct Node {
-    /// The varied layer's face to the base (with the base's steps, formed when first needed:
-    /// `based`).
-    face: Face,
-    based: bool,
+struct NodeS {
     generation: u64,
-    fg_generation: u64,
-    /// Whether the steps above the base and `u0` are this generation's: not where S is the top
-    /// layer's half-space's (q·d_1 > [`X_FAR`]) until the interfaces are asked for.
-    stepped: bool,
     s: f64,
-    /// ũ(0) under t(0) = (0, 1), in the top layer's units: where the downward pass starts.
-    u0: V2,
 }
+
+/// Up to this q·d_1 the cache forms the interface kernels with S, from the steps just formed;
+/// above it S alone, and the interface kernels (steps formed again) only if asked for. The
+/// contact integrals ask for them up to their tails' cut, from q·z_k = 20 on by a few panels
+/// (`contact::evaluate`), and z_1 = d_1 is the shallowest interface: past this they are
+/// rarely asked for, below it mostly.
+const X_EAGER: f64 = 30.0;
 
 /// The kernels of a stack whose layers change thickness (or material) above a fixed base, per
 /// wavenumber: the base (the layers below the `varied` one and the substrate) is the same for
-/// every stack served, so its part of the upward recursion (its steps and the stiffness on top
-/// of it) is computed once per wavenumber and kept; each stack's own part (the layers from the
-/// top down to the varied one) is computed once per wavenumber and kept until the next stack,
-/// and so is its downward pass (the interface kernels), made only at the wavenumbers whose
-/// interface kernels are asked for (the contact integrals ask for S alone above the interface
-/// tails' cut). The same operations as [`Stack::response_into`] in the same order, so the same
-/// values to the last bit, but for S where q·d_1 > 40: the top layer's half-space's (formed
-/// once per stack: the layers below are far from S there; the steps and the base are then
-/// formed only if the interface kernels are asked for).
+/// every stack served, so its part of the upward recursion (its steps and the varied layer's
+/// face to it) is computed once per wavenumber and kept; each stack's own part (the layers from
+/// the top down to the varied one) is formed once per wavenumber for S, and with it the
+/// downward pass (the interface kernels) where q·d_1 ≤ [`X_EAGER`]; above that the interface
+/// kernels are formed only at the wavenumbers where they are asked for (the contact integrals
+/// ask for S alone above the interface tails' cut). S and the interface kernels are kept until
+/// the next stack; the steps above the base are not kept. The same operations as
+/// [`Stack::response_into`] in the same order, so the same values to the last bit, but for S
+/// where q·d_1 > 40: the top layer's half-space's (formed once per stack: the layers below are
+/// far from S there; the steps and the base are then formed only if the interface kernels are
+/// asked for).
 ///
 /// The base follows the stacks served ([`StackCache::serve`]): a stack that differs from the
 /// last one below the varied layer, in the varied layer's material (the faces are that
@@ -682,20 +679,26 @@ pub struct StackCache {
     varied: usize,
     generation: u64,
     index: NodeMap,
-    /// The wavenumbers' bits, in the order of `nodes`.
+    /// The wavenumbers' bits, in the order kept.
     keys: Vec<u64>,
     /// The node last asked for: the evaluations ask for the nodes in the same order every time,
     /// so the next one is usually the node after it, found without hashing.
     cursor: usize,
-    nodes: Vec<Node>,
+    /// Per node, S of the current stack.
+    s: Vec<NodeS>,
+    /// Per node, the generation in which its interface kernels were computed.
+    fg_generation: Vec<u64>,
+    /// Per node, the varied layer's face to the base (formed with the base's steps when first
+    /// needed).
+    faces: Vec<Option<Face>>,
     /// Per node, the steps of the base's layers (top first), `stack.layers.len() − varied − 1`
     /// of them.
     base_steps: Vec<Step>,
-    /// Per node, the steps of the current stack's layers above the base (top first),
-    /// `varied + 1` of them.
-    upper_steps: Vec<Step>,
     /// Per node, (f_k, g_k) of the current stack, `stack.layers.len()` of them.
     interfaces: Vec<(f64, f64)>,
+    /// The steps of the current stack's layers above the base (top first) at the node being
+    /// computed, `varied + 1` of them.
+    upper: [Step; MAX_LAYERS],
 }
 
 /// The per-node storage of a [`StackCache`], emptied, kept for the next cache on the thread.
@@ -703,9 +706,10 @@ pub struct StackCache {
 struct Spare {
     index: NodeMap,
     keys: Vec<u64>,
-    nodes: Vec<Node>,
+    s: Vec<NodeS>,
+    fg_generation: Vec<u64>,
+    faces: Vec<Option<Face>>,
     base_steps: Vec<Step>,
-    upper_steps: Vec<Step>,
     interfaces: Vec<(f64, f64)>,
 }
 
@@ -721,19 +725,27 @@ impl Drop for StackCache {
         let mut spare = Spare {
             index: take(&mut self.index),
             keys: take(&mut self.keys),
-            nodes: take(&mut self.nodes),
+            s: take(&mut self.s),
+            fg_generation: take(&mut self.fg_generation),
+            faces: take(&mut self.faces),
             base_steps: take(&mut self.base_steps),
-            upper_steps: take(&mut self.upper_steps),
             interfaces: take(&mut self.interfaces),
         };
-        spare.index.clear();
-        spare.keys.clear();
-        spare.nodes.clear();
-        spare.base_steps.clear();
-        spare.upper_steps.clear();
-        spare.interfaces.clear();
+        spare.clear();
         // After the thread's storage is gone (at its exit) the spare is simply freed.
         let _ = SPARE.try_with(|s| *s.borrow_mut() = Some(spare));
+    }
+}
+
+impl Spare {
+    fn clear(&mut self) {
+        self.index.clear();
+        self.keys.clear();
+        self.s.clear();
+        self.fg_generation.clear();
+        self.faces.clear();
+        self.base_steps.clear();
+        self.interfaces.clear();
     }
 }
 
@@ -754,10 +766,12 @@ impl StackCache {
             index: spare.index,
             keys: spare.keys,
             cursor: 0,
-            nodes: spare.nodes,
+            s: spare.s,
+            fg_generation: spare.fg_generation,
+            faces: spare.faces,
             base_steps: spare.base_steps,
-            upper_steps: spare.upper_steps,
             interfaces: spare.interfaces,
+            upper: [EMPTY_STEP; MAX_LAYERS],
         }
     }
 
@@ -773,12 +787,12 @@ impl StackCache {
 
     /// How many wavenumbers are kept.
     pub fn len(&self) -> usize {
-        self.nodes.len()
+        self.keys.len()
     }
 
     /// Whether no wavenumber is kept.
     pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
+        self.keys.is_empty()
     }
 
     /// Serve `stack` from now on: the responses kept are dropped unless it is the stack served,
@@ -808,9 +822,10 @@ impl StackCache {
                 };
                 self.index.clear();
                 self.keys.clear();
-                self.nodes.clear();
+                self.s.clear();
+                self.fg_generation.clear();
+                self.faces.clear();
                 self.base_steps.clear();
-                self.upper_steps.clear();
                 self.interfaces.clear();
             }
         }
@@ -822,7 +837,7 @@ impl StackCache {
     /// S of the stack served at wavenumber q ≥ 0 (1/m): the value of [`Stack::response_into`].
     pub fn s(&mut self, q: f64) -> f64 {
         let i = self.node(q);
-        self.nodes[i].s
+        self.s[i].s
     }
 
     /// S⁻² of the stack served at the wavenumbers `q` (the values of [`StackCache::s`]), into
@@ -830,7 +845,7 @@ impl StackCache {
     pub fn k_many(&mut self, q: &[f64], out: &mut [f64]) {
         for (o, &q) in out.iter_mut().zip(q) {
             let i = self.node(q);
-            *o = self.nodes[i].s.powi(-2);
+            *o = self.s[i].s.powi(-2);
         }
     }
 
@@ -840,7 +855,7 @@ impl StackCache {
         let n = self.stack.layers.len();
         for ((fo, go), &q) in f2.iter_mut().zip(g2.iter_mut()).zip(q) {
             let i = self.node(q);
-            if self.nodes[i].fg_generation != self.generation {
+            if self.fg_generation[i] != self.generation {
                 self.compute_interfaces(i);
             }
             let (f, g) = self.interfaces[i * n + k];
@@ -852,11 +867,11 @@ impl StackCache {
     /// [`Stack::response_into`].
     pub fn response(&mut self, q: f64) -> (f64, &[(f64, f64)]) {
         let i = self.node(q);
-        if self.nodes[i].fg_generation != self.generation {
+        if self.fg_generation[i] != self.generation {
             self.compute_interfaces(i);
         }
         let n = self.stack.layers.len();
-        (self.nodes[i].s, &self.interfaces[i * n..(i + 1) * n])
+        (self.s[i].s, &self.interfaces[i * n..(i + 1) * n])
     }
 
     /// The index of the node at q, kept if new, with S of the stack served computed if not yet
@@ -870,7 +885,7 @@ impl StackCache {
             _ => self.find_or_add(q),
         };
         self.cursor = i;
-        if self.nodes[i].generation != self.generation {
+        if self.s[i].generation != self.generation {
             self.compute_s(i, q);
         }
         i
@@ -879,94 +894,90 @@ impl StackCache {
     /// The index of the node at q, kept if new (its base formed when first needed).
     #[inline(never)]
     fn find_or_add(&mut self, q: f64) -> usize {
-        let next = self.nodes.len();
+        let next = self.keys.len();
         let bits = q.to_bits();
         let i = *self.index.entry(bits).or_insert(next as u32) as usize;
         if i == next {
             let n = self.stack.layers.len();
-            let (above, below) = (self.varied + 1, n - self.varied - 1);
+            let below = n - self.varied - 1;
             self.keys.push(bits);
+            self.s.push(NodeS {
+                generation: 0,
+                s: 0.0,
+            });
+            self.fg_generation.push(0);
+            self.faces.push(None);
             self.base_steps
                 .resize(self.base_steps.len() + below, EMPTY_STEP);
-            self.upper_steps
-                .resize(self.upper_steps.len() + above, EMPTY_STEP);
             self.interfaces
                 .resize(self.interfaces.len() + n, (0.0, 0.0));
-            self.nodes.push(Node {
-                face: EMPTY_FACE,
-                based: false,
-                stepped: false,
-                generation: 0,
-                fg_generation: 0,
-                s: 0.0,
-                u0: [0.0; 2],
-            });
         }
         i
     }
 
     /// S of the stack served at node `i` (wavenumber q): the top layer's half-space's where
     /// q·d_1 > [`X_FAR`] ([`Stack::s_far`]: the same value to the last bit), else from its steps
-    /// above the base.
+    /// above the base, with the interface kernels where q·d_1 ≤ [`X_EAGER`].
     #[inline(never)]
     fn compute_s(&mut self, i: usize, q: f64) {
-        let node = &mut self.nodes[i];
-        node.generation = self.generation;
-        node.stepped = false;
-        if q * self.stack.layers[0].thickness > X_FAR {
-            node.s = self.s_far;
+        let x = q * self.stack.layers[0].thickness;
+        let s = if x > X_FAR {
+            self.s_far
         } else {
-            self.compute_steps(i, q);
-            let node = &mut self.nodes[i];
-            node.s = self.stack.s_of(node.u0);
-        }
+            let u0 = self.compute_steps(i, q);
+            if x <= X_EAGER {
+                self.interfaces_at(i, u0);
+            }
+            self.stack.s_of(u0)
+        };
+        self.s[i] = NodeS {
+            generation: self.generation,
+            s,
+        };
     }
 
-    /// The steps above the base of the stack served at node `i` (wavenumber q) and the top
-    /// displacement `u0` (the base formed first if it is not yet).
-    fn compute_steps(&mut self, i: usize, q: f64) {
+    /// The steps above the base of the stack served at node `i` (wavenumber q) into `upper`
+    /// (the base formed first if it is not yet), and the top displacement ũ(0) under
+    /// t(0) = (0, 1), in the top layer's units: where the downward pass starts.
+    fn compute_steps(&mut self, i: usize, q: f64) -> V2 {
         let (n, above) = (self.stack.layers.len(), self.varied + 1);
         let below = n - above;
-        let node = &mut self.nodes[i];
-        if !node.based {
-            let sub = self.stack.substrate_stiffness();
-            let steps = &mut self.base_steps[i * below..(i + 1) * below];
-            let base_k = self.stack.up(q, above, sub, steps);
-            let c = &self.stack.consts[self.varied];
-            node.face = Face::new(c, scale(&base_k, c.inv_two_g));
-            node.based = true;
-        }
-        let upper = &mut self.upper_steps[i * above..(i + 1) * above];
-        self.stack.up_from_face(q, &node.face, upper);
-        node.u0 = self.stack.top_displacement(&upper[0], [0.0, 1.0]);
-        node.stepped = true;
+        let face = match &self.faces[i] {
+            Some(face) => face,
+            None => {
+                let sub = self.stack.substrate_stiffness();
+                let steps = &mut self.base_steps[i * below..(i + 1) * below];
+                let base_k = self.stack.up(q, above, sub, steps);
+                let c = &self.stack.consts[self.varied];
+                self.faces[i].insert(Face::new(c, scale(&base_k, c.inv_two_g)))
+            }
+        };
+        let upper = &mut self.upper[..above];
+        self.stack.up_from_face(q, face, upper);
+        self.stack.top_displacement(&upper[0], [0.0, 1.0])
     }
 
-    /// Every (f_k, g_k) of the stack served at node `i`, whose S is computed: the downward pass
-    /// (after the steps above the base, if S was the far form).
-    #[inline(never)]
-    fn compute_interfaces(&mut self, i: usize) {
-        if !self.nodes[i].stepped {
-            self.compute_steps(i, f64::from_bits(self.keys[i]));
-        }
+    /// Every (f_k, g_k) of the stack served at node `i` from the top displacement `u0` and the
+    /// steps above the base just formed ([`Self::compute_steps`]): the downward pass.
+    fn interfaces_at(&mut self, i: usize, u0: V2) {
         let n = self.stack.layers.len();
         let (above, below) = (self.varied + 1, n - self.varied - 1);
-        let node = &mut self.nodes[i];
-        let upper = &self.upper_steps[i * above..(i + 1) * above];
         let lower = &self.base_steps[i * below..(i + 1) * below];
         let interfaces = &mut self.interfaces[i * n..(i + 1) * n];
         self.stack
-            .interfaces_from(node.u0, upper, lower, interfaces);
-        node.fg_generation = self.generation;
+            .interfaces_from(u0, &self.upper[..above], lower, interfaces);
+        self.fg_generation[i] = self.generation;
+    }
+
+    /// Every (f_k, g_k) of the stack served at node `i`, whose S is computed but not its
+    /// interface kernels (q·d_1 > [`X_EAGER`]): the steps above the base formed again, then the
+    /// downward pass.
+    #[inline(never)]
+    fn compute_interfaces(&mut self, i: usize) {
+        let u0 = self.compute_steps(i, f64::from_bits(self.keys[i]));
+        self.interfaces_at(i, u0);
     }
 }
-
-/// A placeholder face, overwritten before it is read.
-const EMPTY_FACE: Face = Face {
-    kb: I2,
-    r0: I2,
-    b0: I2,
-};
 
 /// A placeholder step, overwritten before it is read.
 const EMPTY_STEP: Step = Step::Thick {
