@@ -79,6 +79,7 @@ pub use tangential::InterfaceShear;
 
 use super::Elastic;
 use crate::error::Error;
+use crate::simd::with_avx2;
 use serde::Serialize;
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -150,6 +151,7 @@ const SERIES: [[f64; 4]; TERMS] = {
 };
 
 /// The four series' sums in x² (each by Horner's rule, the four side by side).
+#[inline(always)]
 fn horner4(x2: f64) -> [f64; 4] {
     SERIES.iter().rev().fold([0.0; 4], |acc, ck| {
         [
@@ -161,6 +163,7 @@ fn horner4(x2: f64) -> [f64; 4] {
     })
 }
 
+#[inline(always)]
 fn mul(a: &M2, b: &M2) -> M2 {
     [
         [
@@ -174,6 +177,7 @@ fn mul(a: &M2, b: &M2) -> M2 {
     ]
 }
 
+#[inline(always)]
 fn mulv(a: &M2, v: V2) -> V2 {
     [
         a[0][0] * v[0] + a[0][1] * v[1],
@@ -181,6 +185,7 @@ fn mulv(a: &M2, v: V2) -> V2 {
     ]
 }
 
+#[inline(always)]
 fn add(a: &M2, b: &M2) -> M2 {
     [
         [a[0][0] + b[0][0], a[0][1] + b[0][1]],
@@ -188,6 +193,7 @@ fn add(a: &M2, b: &M2) -> M2 {
     ]
 }
 
+#[inline(always)]
 fn sub(a: &M2, b: &M2) -> M2 {
     [
         [a[0][0] - b[0][0], a[0][1] - b[0][1]],
@@ -195,10 +201,12 @@ fn sub(a: &M2, b: &M2) -> M2 {
     ]
 }
 
+#[inline(always)]
 fn scale(a: &M2, s: f64) -> M2 {
     [[a[0][0] * s, a[0][1] * s], [a[1][0] * s, a[1][1] * s]]
 }
 
+#[inline(always)]
 fn inv(a: &M2) -> M2 {
     let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
     [
@@ -222,6 +230,7 @@ fn ratio(terms: f64, sum: f64) -> f64 {
 
 /// The product a·b of a symmetric result: both off-diagonal entries from whichever of the two
 /// computed ones cancels less.
+#[inline(always)]
 fn mul_sym(a: &M2, b: &M2) -> M2 {
     let c = mul(a, b);
     let r01 = ratio(
@@ -237,6 +246,7 @@ fn mul_sym(a: &M2, b: &M2) -> M2 {
 }
 
 /// Per component, the value of `a` or `b` whose cancellation ratio is smaller.
+#[inline(always)]
 fn pick(a: (V2, V2), b: (V2, V2)) -> V2 {
     let (va, ta) = a;
     let (vb, tb) = b;
@@ -251,6 +261,7 @@ fn pick(a: (V2, V2), b: (V2, V2)) -> V2 {
 }
 
 /// m·v + w with the sums of the magnitudes of each component's terms.
+#[inline(always)]
 fn mulv_add_terms(m: &M2, v: V2, w: V2) -> (V2, V2) {
     let val = [
         m[0][0] * v[0] + m[0][1] * v[1] + w[0],
@@ -274,6 +285,7 @@ fn mul4(a: &M4, b: &M4) -> M4 {
 }
 
 /// The 2×2 blocks (uu, ut, tu, tt) of a 4×4 matrix on (ũ, t).
+#[inline(always)]
 fn blocks(m: &M4) -> [M2; 4] {
     let b = |r: usize, c: usize| [[m[r][c], m[r][c + 1]], [m[r + 1][c], m[r + 1][c + 1]]];
     [b(0, 0), b(0, 2), b(2, 0), b(2, 2)]
@@ -339,6 +351,7 @@ impl Consts {
     /// only with (W̃, T) and A² only within each pair ([`cross`]), so an entry of P − I is
     /// either odd (β A + δ A³, negated in Q) or even ((α − 1) I + γ A², the same in Q): the sums
     /// of the full four-term form with its exact zeros left out.
+    #[inline(always)]
     fn propagators_minus_i(&self, x: f64) -> ([M2; 4], [M2; 4]) {
         let x2 = x * x;
         let [h_a, h_b, h_g, h_d] = horner4(x2);
@@ -486,6 +499,7 @@ impl Stack {
     /// The upward recursion through the layers `from` … `from + steps.len() − 1`, starting from
     /// the stiffness `k_pa` (Pa) below the last of them: each layer's step into `steps`, and
     /// the stiffness (Pa) above the first.
+    #[inline(always)]
     fn up(&self, q: f64, from: usize, mut k_pa: M2, steps: &mut [Step]) -> M2 {
         let range = from..from + steps.len();
         let layers = self.layers[range.clone()].iter().zip(&self.consts[range]);
@@ -505,6 +519,7 @@ impl Stack {
     /// [`Self::up`] through layers 0 … `steps.len() − 1` (not none) from the stiffness `k_pa`
     /// (Pa) below the last of them, without the top layer's stiffness: the top displacement
     /// comes from the top layer's step ([`Self::top_displacement`]).
+    #[inline(always)]
     fn up_to_top(&self, q: f64, k_pa: M2, steps: &mut [Step]) {
         let (top, below) = steps.split_first_mut().expect("a layer");
         let k_pa = self.up(q, 1, k_pa, below);
@@ -520,6 +535,7 @@ impl Stack {
 
     /// [`Self::up_to_top`] through layers 0 … `steps.len() − 1` from the top of the base, the
     /// lowest of them on its face `face` to the base.
+    #[inline(always)]
     fn up_from_face(&self, q: f64, face: &Face, steps: &mut [Step]) {
         let (last, above) = steps.split_last_mut().expect("a layer above the base");
         let c = &self.consts[above.len()];
@@ -565,12 +581,14 @@ impl Stack {
     }
 
     /// S from the top displacement ũ(0) (in the top layer's units) under t(0) = (0, 1).
+    #[inline(always)]
     fn s_of(&self, u0: V2) -> f64 {
         -u0[1] / (2.0 * (1.0 - self.layers[0].material.poisson))
     }
 
     /// The top displacement ũ(0) (in the top layer's units) under the top traction t(0) = `t0`,
     /// from the top layer's step.
+    #[inline(always)]
     fn top_displacement(&self, top_step: &Step, t0: V2) -> V2 {
         // Y X⁻¹ for a thin top layer (no inversion of the stiffness, which cancels for a thin
         // incompressible layer on a far stiffer base), K̃_1⁻¹ = (I + ER)(K̃_1 (I + ER))⁻¹ for a
@@ -583,6 +601,7 @@ impl Stack {
 
     /// (f_k, g_k) into `out` from the top displacement `u0` under t(0) = (0, 1), through the
     /// steps of every layer (`upper`, not empty, then `lower`; top first).
+    #[inline(always)]
     fn interfaces_from(&self, u0: V2, upper: &[Step], lower: &[Step], out: &mut [(f64, f64)]) {
         let mut t = [[0.0; 2]; MAX_LAYERS];
         self.pass(
@@ -599,6 +618,7 @@ impl Stack {
     /// The downward pass of the top traction t(0) = `t0` with the top displacement `u0` (in the
     /// top layer's units) through the steps of every layer (top first): the traction (T, Σ) at
     /// every interface into `out`.
+    #[inline(always)]
     fn pass<'a>(&self, u0: V2, steps: impl Iterator<Item = &'a Step>, t0: V2, out: &mut [V2]) {
         let mut t = t0;
         // Displacement times q (dimensionless): layer k's ũ is 2G_k times this.
@@ -917,9 +937,23 @@ impl StackCache {
 
     /// S of the stack served at node `i` (wavenumber q): the top layer's half-space's where
     /// q·d_1 > [`X_FAR`] ([`Stack::s_far`]: the same value to the last bit), else from its steps
-    /// above the base, with the interface kernels where q·d_1 ≤ [`X_EAGER`].
+    /// above the base, with the interface kernels where q·d_1 ≤ [`X_EAGER`]. Like
+    /// [`Self::compute_interfaces`], compiled also for AVX2 and run so where the CPU has it
+    /// (`crate::simd`: everything below is inlined into both builds; the same operations, so the
+    /// same values as [`Stack::response_into`]'s baseline build to the last bit).
     #[inline(never)]
     fn compute_s(&mut self, i: usize, q: f64) {
+        with_avx2!(self.compute_s_avx2(i, q), self.compute_s_in(i, q))
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn compute_s_avx2(&mut self, i: usize, q: f64) {
+        self.compute_s_in(i, q);
+    }
+
+    #[inline(always)]
+    fn compute_s_in(&mut self, i: usize, q: f64) {
         let x = q * self.stack.layers[0].thickness;
         let s = if x > X_FAR {
             self.s_far
@@ -939,6 +973,7 @@ impl StackCache {
     /// The steps above the base of the stack served at node `i` (wavenumber q) into `upper`
     /// (the base formed first if it is not yet), and the top displacement ũ(0) under
     /// t(0) = (0, 1), in the top layer's units: where the downward pass starts.
+    #[inline(always)]
     fn compute_steps(&mut self, i: usize, q: f64) -> V2 {
         let (n, above) = (self.stack.layers.len(), self.varied + 1);
         let below = n - above;
@@ -959,6 +994,7 @@ impl StackCache {
 
     /// Every (f_k, g_k) of the stack served at node `i` from the top displacement `u0` and the
     /// steps above the base just formed ([`Self::compute_steps`]): the downward pass.
+    #[inline(always)]
     fn interfaces_at(&mut self, i: usize, u0: V2) {
         let n = self.stack.layers.len();
         let (above, below) = (self.varied + 1, n - self.varied - 1);
@@ -974,6 +1010,20 @@ impl StackCache {
     /// downward pass.
     #[inline(never)]
     fn compute_interfaces(&mut self, i: usize) {
+        with_avx2!(
+            self.compute_interfaces_avx2(i),
+            self.compute_interfaces_in(i)
+        )
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn compute_interfaces_avx2(&mut self, i: usize) {
+        self.compute_interfaces_in(i);
+    }
+
+    #[inline(always)]
+    fn compute_interfaces_in(&mut self, i: usize) {
         let u0 = self.compute_steps(i, f64::from_bits(self.keys[i]));
         self.interfaces_at(i, u0);
     }
@@ -987,12 +1037,14 @@ const EMPTY_STEP: Step = Step::Thick {
     i_er: I2,
 };
 
+#[inline(always)]
 fn scale_v(v: V2, s: f64) -> V2 {
     [v[0] * s, v[1] * s]
 }
 
 /// The thin-layer step with the propagator Q = exp(−xA) on the stiffness K̃_b below the layer,
 /// into `step` (written in place: a step is some hundred bytes); X and Y (K̃_t = X Y⁻¹).
+#[inline(always)]
 fn thin_step(c: &Consts, x: f64, kb: M2, step: &mut Step) -> (M2, M2) {
     let (p, [quu, qut, qtu, qtt]) = c.propagators_minus_i(x);
     let x_m = add(&add(&qtu, &kb), &mul(&qtt, &kb));
@@ -1007,6 +1059,7 @@ fn thin_step(c: &Consts, x: f64, kb: M2, step: &mut Step) -> (M2, M2) {
 }
 
 /// [`thin_step`] and the stiffness K̃_t above the layer.
+#[inline(always)]
 fn thin_up(c: &Consts, x: f64, kb: M2, step: &mut Step) -> M2 {
     let (x_m, y_m) = thin_step(c, x, kb, step);
     mul_sym(&x_m, &inv(&y_m))
@@ -1024,6 +1077,7 @@ struct Face {
 
 impl Face {
     /// The face of layer `c` on the stiffness K̃_b (in its units) below it.
+    #[inline(always)]
     fn new(c: &Consts, kb: M2) -> Self {
         let ku_kb_inv = inv(&sub(&c.ku, &kb));
         Self {
@@ -1035,6 +1089,7 @@ impl Face {
 }
 
 /// The thick-layer step with decaying exponentials only, into `step`; ER.
+#[inline(always)]
 fn thick_step(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
     let e = (-x).exp();
     let xk = x / c.kappa;
@@ -1053,6 +1108,7 @@ fn thick_step(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
 }
 
 /// [`thick_step`] and the stiffness K̃_t above the layer.
+#[inline(always)]
 fn thick_up(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
     let er = thick_step(c, x, face, step);
     let i_er = add(&I2, &er);
@@ -1060,6 +1116,7 @@ fn thick_up(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
 }
 
 /// The state (ũ_b, t_b) at a layer's bottom from (ũ_t, t_t) at its top.
+#[inline(always)]
 fn down(step: &Step, ut: V2, t: V2) -> (V2, V2) {
     match step {
         Step::Thick { kb, v_of_t, b, .. } => {
