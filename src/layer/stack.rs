@@ -856,25 +856,51 @@ impl StackCache {
 
     /// S of the stack served at wavenumber q ≥ 0 (1/m): the value of [`Stack::response_into`].
     pub fn s(&mut self, q: f64) -> f64 {
-        let i = self.node(q);
+        let i = self.node::<false>(q);
         self.s[i].s
     }
 
     /// S⁻² of the stack served at the wavenumbers `q` (the values of [`StackCache::s`]), into
-    /// `out`.
+    /// `out`. The loop with the kernels inlined is compiled also for AVX2 ([`Self::compute_s`]).
     pub fn k_many(&mut self, q: &[f64], out: &mut [f64]) {
+        with_avx2!(self.k_many_avx2(q, out), self.k_many_in(q, out))
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn k_many_avx2(&mut self, q: &[f64], out: &mut [f64]) {
+        self.k_many_in(q, out);
+    }
+
+    #[inline(always)]
+    fn k_many_in(&mut self, q: &[f64], out: &mut [f64]) {
         for (o, &q) in out.iter_mut().zip(q) {
-            let i = self.node(q);
+            let i = self.node::<true>(q);
             *o = self.s[i].s.powi(-2);
         }
     }
 
     /// f_k², g_k² at the interface `k` of the stack served at the wavenumbers `q` (the values of
-    /// [`StackCache::response`]), into `f2` and `g2`.
+    /// [`StackCache::response`]), into `f2` and `g2`. The loop with S's kernels inlined is
+    /// compiled also for AVX2 ([`Self::compute_s`]).
     pub fn interface_many(&mut self, k: usize, q: &[f64], f2: &mut [f64], g2: &mut [f64]) {
+        with_avx2!(
+            self.interface_many_avx2(k, q, f2, g2),
+            self.interface_many_in(k, q, f2, g2)
+        )
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn interface_many_avx2(&mut self, k: usize, q: &[f64], f2: &mut [f64], g2: &mut [f64]) {
+        self.interface_many_in(k, q, f2, g2);
+    }
+
+    #[inline(always)]
+    fn interface_many_in(&mut self, k: usize, q: &[f64], f2: &mut [f64], g2: &mut [f64]) {
         let n = self.stack.layers.len();
         for ((fo, go), &q) in f2.iter_mut().zip(g2.iter_mut()).zip(q) {
-            let i = self.node(q);
+            let i = self.node::<true>(q);
             if self.fg_generation[i] != self.generation {
                 self.compute_interfaces(i);
             }
@@ -886,7 +912,7 @@ impl StackCache {
     /// S and every (f_k, g_k) of the stack served at wavenumber q ≥ 0 (1/m): the values of
     /// [`Stack::response_into`].
     pub fn response(&mut self, q: f64) -> (f64, &[(f64, f64)]) {
-        let i = self.node(q);
+        let i = self.node::<false>(q);
         if self.fg_generation[i] != self.generation {
             self.compute_interfaces(i);
         }
@@ -896,9 +922,10 @@ impl StackCache {
 
     /// The index of the node at q, kept if new, with S of the stack served computed if not yet
     /// in this generation. The nodes come mostly in the order kept and computed: the rest is
-    /// out of line.
-    #[inline]
-    fn node(&mut self, q: f64) -> usize {
+    /// out of line, S's kernels too unless `INLINE` (for the loops compiled twice, which are
+    /// then the kernels' build).
+    #[inline(always)]
+    fn node<const INLINE: bool>(&mut self, q: f64) -> usize {
         let bits = q.to_bits();
         let i = match self.keys.get(self.cursor + 1) {
             Some(&k) if k == bits => self.cursor + 1,
@@ -906,7 +933,11 @@ impl StackCache {
         };
         self.cursor = i;
         if self.s[i].generation != self.generation {
-            self.compute_s(i, q);
+            if INLINE {
+                self.compute_s_in(i, q);
+            } else {
+                self.compute_s(i, q);
+            }
         }
         i
     }
