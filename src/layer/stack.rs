@@ -678,7 +678,7 @@ const X_EAGER: f64 = 30.0;
 /// every stack served, so its part of the upward recursion (its steps and the varied layer's
 /// face to it) is computed once per wavenumber and kept; each stack's own part (the layers from
 /// the top down to the varied one) is formed once per wavenumber for S, and with it the
-/// downward pass (the interface kernels) where q·d_1 ≤ [`X_EAGER`]; above that the interface
+/// downward pass (the interface kernels) where q·d_1 ≤ 30 (`X_EAGER`); above that the interface
 /// kernels are formed only at the wavenumbers where they are asked for (the contact integrals
 /// ask for S alone above the interface tails' cut). S and the interface kernels are kept until
 /// the next stack; the steps above the base are not kept. The same operations as
@@ -861,7 +861,7 @@ impl StackCache {
     }
 
     /// S⁻² of the stack served at the wavenumbers `q` (the values of [`StackCache::s`]), into
-    /// `out`. The loop with the kernels inlined is compiled also for AVX2 ([`Self::compute_s`]).
+    /// `out`. The loop with the kernels inlined is compiled also for AVX2 (as `compute_s`).
     pub fn k_many(&mut self, q: &[f64], out: &mut [f64]) {
         with_avx2!(self.k_many_avx2(q, out), self.k_many_in(q, out))
     }
@@ -882,7 +882,7 @@ impl StackCache {
 
     /// f_k², g_k² at the interface `k` of the stack served at the wavenumbers `q` (the values of
     /// [`StackCache::response`]), into `f2` and `g2`. The loop with S's kernels inlined is
-    /// compiled also for AVX2 ([`Self::compute_s`]).
+    /// compiled also for AVX2 (as `compute_s`).
     pub fn interface_many(&mut self, k: usize, q: &[f64], f2: &mut [f64], g2: &mut [f64]) {
         with_avx2!(
             self.interface_many_avx2(k, q, f2, g2),
