@@ -79,6 +79,7 @@ pub use tangential::InterfaceShear;
 
 use super::Elastic;
 use crate::error::Error;
+use crate::simd::with_avx2;
 use serde::Serialize;
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -150,6 +151,7 @@ const SERIES: [[f64; 4]; TERMS] = {
 };
 
 /// The four series' sums in x² (each by Horner's rule, the four side by side).
+#[inline(always)]
 fn horner4(x2: f64) -> [f64; 4] {
     SERIES.iter().rev().fold([0.0; 4], |acc, ck| {
         [
@@ -161,6 +163,7 @@ fn horner4(x2: f64) -> [f64; 4] {
     })
 }
 
+#[inline(always)]
 fn mul(a: &M2, b: &M2) -> M2 {
     [
         [
@@ -174,6 +177,7 @@ fn mul(a: &M2, b: &M2) -> M2 {
     ]
 }
 
+#[inline(always)]
 fn mulv(a: &M2, v: V2) -> V2 {
     [
         a[0][0] * v[0] + a[0][1] * v[1],
@@ -181,6 +185,7 @@ fn mulv(a: &M2, v: V2) -> V2 {
     ]
 }
 
+#[inline(always)]
 fn add(a: &M2, b: &M2) -> M2 {
     [
         [a[0][0] + b[0][0], a[0][1] + b[0][1]],
@@ -188,6 +193,7 @@ fn add(a: &M2, b: &M2) -> M2 {
     ]
 }
 
+#[inline(always)]
 fn sub(a: &M2, b: &M2) -> M2 {
     [
         [a[0][0] - b[0][0], a[0][1] - b[0][1]],
@@ -195,10 +201,12 @@ fn sub(a: &M2, b: &M2) -> M2 {
     ]
 }
 
+#[inline(always)]
 fn scale(a: &M2, s: f64) -> M2 {
     [[a[0][0] * s, a[0][1] * s], [a[1][0] * s, a[1][1] * s]]
 }
 
+#[inline(always)]
 fn inv(a: &M2) -> M2 {
     let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
     [
@@ -210,19 +218,19 @@ fn inv(a: &M2) -> M2 {
 const I2: M2 = [[1.0, 0.0], [0.0, 1.0]];
 
 /// Σ|terms| / |sum|: how many times the rounding of the terms is magnified in their sum
-/// (1 for an exact zero of zero terms).
+/// (1 for an exact zero of zero terms, infinite for a zero of others). `terms` is the sum of
+/// the terms' magnitudes in the order of `sum`'s, so it is at least |sum| (rounding is
+/// monotone) and the quotient at least 1: taking the larger of it and 1 changes nothing but
+/// 0/0, which it makes 1, without a branch (the quotients of a comparison are formed side by
+/// side).
+#[inline(always)]
 fn ratio(terms: f64, sum: f64) -> f64 {
-    if sum != 0.0 {
-        terms / sum.abs()
-    } else if terms == 0.0 {
-        1.0
-    } else {
-        f64::INFINITY
-    }
+    (terms / sum.abs()).max(1.0)
 }
 
 /// The product a·b of a symmetric result: both off-diagonal entries from whichever of the two
 /// computed ones cancels less.
+#[inline(always)]
 fn mul_sym(a: &M2, b: &M2) -> M2 {
     let c = mul(a, b);
     let r01 = ratio(
@@ -238,6 +246,7 @@ fn mul_sym(a: &M2, b: &M2) -> M2 {
 }
 
 /// Per component, the value of `a` or `b` whose cancellation ratio is smaller.
+#[inline(always)]
 fn pick(a: (V2, V2), b: (V2, V2)) -> V2 {
     let (va, ta) = a;
     let (vb, tb) = b;
@@ -252,6 +261,7 @@ fn pick(a: (V2, V2), b: (V2, V2)) -> V2 {
 }
 
 /// m·v + w with the sums of the magnitudes of each component's terms.
+#[inline(always)]
 fn mulv_add_terms(m: &M2, v: V2, w: V2) -> (V2, V2) {
     let val = [
         m[0][0] * v[0] + m[0][1] * v[1] + w[0],
@@ -275,6 +285,7 @@ fn mul4(a: &M4, b: &M4) -> M4 {
 }
 
 /// The 2×2 blocks (uu, ut, tu, tt) of a 4×4 matrix on (ũ, t).
+#[inline(always)]
 fn blocks(m: &M4) -> [M2; 4] {
     let b = |r: usize, c: usize| [[m[r][c], m[r][c + 1]], [m[r + 1][c], m[r + 1][c + 1]]];
     [b(0, 0), b(0, 2), b(2, 0), b(2, 2)]
@@ -340,6 +351,7 @@ impl Consts {
     /// only with (W̃, T) and A² only within each pair ([`cross`]), so an entry of P − I is
     /// either odd (β A + δ A³, negated in Q) or even ((α − 1) I + γ A², the same in Q): the sums
     /// of the full four-term form with its exact zeros left out.
+    #[inline(always)]
     fn propagators_minus_i(&self, x: f64) -> ([M2; 4], [M2; 4]) {
         let x2 = x * x;
         let [h_a, h_b, h_g, h_d] = horner4(x2);
@@ -487,6 +499,7 @@ impl Stack {
     /// The upward recursion through the layers `from` … `from + steps.len() − 1`, starting from
     /// the stiffness `k_pa` (Pa) below the last of them: each layer's step into `steps`, and
     /// the stiffness (Pa) above the first.
+    #[inline(always)]
     fn up(&self, q: f64, from: usize, mut k_pa: M2, steps: &mut [Step]) -> M2 {
         let range = from..from + steps.len();
         let layers = self.layers[range.clone()].iter().zip(&self.consts[range]);
@@ -506,6 +519,7 @@ impl Stack {
     /// [`Self::up`] through layers 0 … `steps.len() − 1` (not none) from the stiffness `k_pa`
     /// (Pa) below the last of them, without the top layer's stiffness: the top displacement
     /// comes from the top layer's step ([`Self::top_displacement`]).
+    #[inline(always)]
     fn up_to_top(&self, q: f64, k_pa: M2, steps: &mut [Step]) {
         let (top, below) = steps.split_first_mut().expect("a layer");
         let k_pa = self.up(q, 1, k_pa, below);
@@ -521,6 +535,7 @@ impl Stack {
 
     /// [`Self::up_to_top`] through layers 0 … `steps.len() − 1` from the top of the base, the
     /// lowest of them on its face `face` to the base.
+    #[inline(always)]
     fn up_from_face(&self, q: f64, face: &Face, steps: &mut [Step]) {
         let (last, above) = steps.split_last_mut().expect("a layer above the base");
         let c = &self.consts[above.len()];
@@ -566,12 +581,14 @@ impl Stack {
     }
 
     /// S from the top displacement ũ(0) (in the top layer's units) under t(0) = (0, 1).
+    #[inline(always)]
     fn s_of(&self, u0: V2) -> f64 {
         -u0[1] / (2.0 * (1.0 - self.layers[0].material.poisson))
     }
 
     /// The top displacement ũ(0) (in the top layer's units) under the top traction t(0) = `t0`,
     /// from the top layer's step.
+    #[inline(always)]
     fn top_displacement(&self, top_step: &Step, t0: V2) -> V2 {
         // Y X⁻¹ for a thin top layer (no inversion of the stiffness, which cancels for a thin
         // incompressible layer on a far stiffer base), K̃_1⁻¹ = (I + ER)(K̃_1 (I + ER))⁻¹ for a
@@ -584,6 +601,7 @@ impl Stack {
 
     /// (f_k, g_k) into `out` from the top displacement `u0` under t(0) = (0, 1), through the
     /// steps of every layer (`upper`, not empty, then `lower`; top first).
+    #[inline(always)]
     fn interfaces_from(&self, u0: V2, upper: &[Step], lower: &[Step], out: &mut [(f64, f64)]) {
         let mut t = [[0.0; 2]; MAX_LAYERS];
         self.pass(
@@ -600,6 +618,7 @@ impl Stack {
     /// The downward pass of the top traction t(0) = `t0` with the top displacement `u0` (in the
     /// top layer's units) through the steps of every layer (top first): the traction (T, Σ) at
     /// every interface into `out`.
+    #[inline(always)]
     fn pass<'a>(&self, u0: V2, steps: impl Iterator<Item = &'a Step>, t0: V2, out: &mut [V2]) {
         let mut t = t0;
         // Displacement times q (dimensionless): layer k's ũ is 2G_k times this.
@@ -639,36 +658,34 @@ impl Hasher for NodeHasher {
 /// A map from a wavenumber's bits to an index, hashed by [`NodeHasher`].
 pub type NodeMap = HashMap<u64, u32, BuildHasherDefault<NodeHasher>>;
 
-/// One wavenumber of a [`StackCache`]: the varied layer's face to the base below it, and S of
-/// the current stack with the top displacement it came from, valid if computed in the current
-/// `generation` (the interface kernels, kept beside, if computed in `fg_generation`).
+/// S of the stack served at one wavenumber of a [`StackCache`], valid if computed in the
+/// cache's current `generation`.
 #[derive(Debug, Clone, Copy)]
-struct Node {
-    /// The varied layer's face to the base (with the base's steps, formed when first needed:
-    /// `based`).
-    face: Face,
-    based: bool,
+struct NodeS {
     generation: u64,
-    fg_generation: u64,
-    /// Whether the steps above the base and `u0` are this generation's: not where S is the top
-    /// layer's half-space's (q·d_1 > [`X_FAR`]) until the interfaces are asked for.
-    stepped: bool,
     s: f64,
-    /// ũ(0) under t(0) = (0, 1), in the top layer's units: where the downward pass starts.
-    u0: V2,
 }
+
+/// Up to this q·d_1 the cache forms the interface kernels with S, from the steps just formed;
+/// above it S alone, and the interface kernels (steps formed again) only if asked for. The
+/// contact integrals ask for them up to their tails' cut, from q·z_k = 20 on by a few panels
+/// (`contact::evaluate`), and z_1 = d_1 is the shallowest interface: past this they are
+/// rarely asked for, below it mostly.
+const X_EAGER: f64 = 30.0;
 
 /// The kernels of a stack whose layers change thickness (or material) above a fixed base, per
 /// wavenumber: the base (the layers below the `varied` one and the substrate) is the same for
-/// every stack served, so its part of the upward recursion (its steps and the stiffness on top
-/// of it) is computed once per wavenumber and kept; each stack's own part (the layers from the
-/// top down to the varied one) is computed once per wavenumber and kept until the next stack,
-/// and so is its downward pass (the interface kernels), made only at the wavenumbers whose
-/// interface kernels are asked for (the contact integrals ask for S alone above the interface
-/// tails' cut). The same operations as [`Stack::response_into`] in the same order, so the same
-/// values to the last bit, but for S where q·d_1 > 40: the top layer's half-space's (formed
-/// once per stack: the layers below are far from S there; the steps and the base are then
-/// formed only if the interface kernels are asked for).
+/// every stack served, so its part of the upward recursion (its steps and the varied layer's
+/// face to it) is computed once per wavenumber and kept; each stack's own part (the layers from
+/// the top down to the varied one) is formed once per wavenumber for S, and with it the
+/// downward pass (the interface kernels) where q·d_1 ≤ 30 (`X_EAGER`); above that the interface
+/// kernels are formed only at the wavenumbers where they are asked for (the contact integrals
+/// ask for S alone above the interface tails' cut). S and the interface kernels are kept until
+/// the next stack; the steps above the base are not kept. The same operations as
+/// [`Stack::response_into`] in the same order, so the same values to the last bit, but for S
+/// where q·d_1 > 40: the top layer's half-space's (formed once per stack: the layers below are
+/// far from S there; the steps and the base are then formed only if the interface kernels are
+/// asked for).
 ///
 /// The base follows the stacks served ([`StackCache::serve`]): a stack that differs from the
 /// last one below the varied layer, in the varied layer's material (the faces are that
@@ -682,20 +699,26 @@ pub struct StackCache {
     varied: usize,
     generation: u64,
     index: NodeMap,
-    /// The wavenumbers' bits, in the order of `nodes`.
+    /// The wavenumbers' bits, in the order kept.
     keys: Vec<u64>,
     /// The node last asked for: the evaluations ask for the nodes in the same order every time,
     /// so the next one is usually the node after it, found without hashing.
     cursor: usize,
-    nodes: Vec<Node>,
+    /// Per node, S of the current stack.
+    s: Vec<NodeS>,
+    /// Per node, the generation in which its interface kernels were computed.
+    fg_generation: Vec<u64>,
+    /// Per node, the varied layer's face to the base (formed with the base's steps when first
+    /// needed).
+    faces: Vec<Option<Face>>,
     /// Per node, the steps of the base's layers (top first), `stack.layers.len() − varied − 1`
     /// of them.
     base_steps: Vec<Step>,
-    /// Per node, the steps of the current stack's layers above the base (top first),
-    /// `varied + 1` of them.
-    upper_steps: Vec<Step>,
     /// Per node, (f_k, g_k) of the current stack, `stack.layers.len()` of them.
     interfaces: Vec<(f64, f64)>,
+    /// The steps of the current stack's layers above the base (top first) at the node being
+    /// computed, `varied + 1` of them.
+    upper: [Step; MAX_LAYERS],
 }
 
 /// The per-node storage of a [`StackCache`], emptied, kept for the next cache on the thread.
@@ -703,9 +726,10 @@ pub struct StackCache {
 struct Spare {
     index: NodeMap,
     keys: Vec<u64>,
-    nodes: Vec<Node>,
+    s: Vec<NodeS>,
+    fg_generation: Vec<u64>,
+    faces: Vec<Option<Face>>,
     base_steps: Vec<Step>,
-    upper_steps: Vec<Step>,
     interfaces: Vec<(f64, f64)>,
 }
 
@@ -721,19 +745,27 @@ impl Drop for StackCache {
         let mut spare = Spare {
             index: take(&mut self.index),
             keys: take(&mut self.keys),
-            nodes: take(&mut self.nodes),
+            s: take(&mut self.s),
+            fg_generation: take(&mut self.fg_generation),
+            faces: take(&mut self.faces),
             base_steps: take(&mut self.base_steps),
-            upper_steps: take(&mut self.upper_steps),
             interfaces: take(&mut self.interfaces),
         };
-        spare.index.clear();
-        spare.keys.clear();
-        spare.nodes.clear();
-        spare.base_steps.clear();
-        spare.upper_steps.clear();
-        spare.interfaces.clear();
+        spare.clear();
         // After the thread's storage is gone (at its exit) the spare is simply freed.
         let _ = SPARE.try_with(|s| *s.borrow_mut() = Some(spare));
+    }
+}
+
+impl Spare {
+    fn clear(&mut self) {
+        self.index.clear();
+        self.keys.clear();
+        self.s.clear();
+        self.fg_generation.clear();
+        self.faces.clear();
+        self.base_steps.clear();
+        self.interfaces.clear();
     }
 }
 
@@ -754,10 +786,12 @@ impl StackCache {
             index: spare.index,
             keys: spare.keys,
             cursor: 0,
-            nodes: spare.nodes,
+            s: spare.s,
+            fg_generation: spare.fg_generation,
+            faces: spare.faces,
             base_steps: spare.base_steps,
-            upper_steps: spare.upper_steps,
             interfaces: spare.interfaces,
+            upper: [EMPTY_STEP; MAX_LAYERS],
         }
     }
 
@@ -773,12 +807,12 @@ impl StackCache {
 
     /// How many wavenumbers are kept.
     pub fn len(&self) -> usize {
-        self.nodes.len()
+        self.keys.len()
     }
 
     /// Whether no wavenumber is kept.
     pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
+        self.keys.is_empty()
     }
 
     /// Serve `stack` from now on: the responses kept are dropped unless it is the stack served,
@@ -808,9 +842,10 @@ impl StackCache {
                 };
                 self.index.clear();
                 self.keys.clear();
-                self.nodes.clear();
+                self.s.clear();
+                self.fg_generation.clear();
+                self.faces.clear();
                 self.base_steps.clear();
-                self.upper_steps.clear();
                 self.interfaces.clear();
             }
         }
@@ -821,26 +856,52 @@ impl StackCache {
 
     /// S of the stack served at wavenumber q ≥ 0 (1/m): the value of [`Stack::response_into`].
     pub fn s(&mut self, q: f64) -> f64 {
-        let i = self.node(q);
-        self.nodes[i].s
+        let i = self.node::<false>(q);
+        self.s[i].s
     }
 
     /// S⁻² of the stack served at the wavenumbers `q` (the values of [`StackCache::s`]), into
-    /// `out`.
+    /// `out`. The loop with the kernels inlined is compiled also for AVX2 (as `compute_s`).
     pub fn k_many(&mut self, q: &[f64], out: &mut [f64]) {
+        with_avx2!(self.k_many_avx2(q, out), self.k_many_in(q, out))
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn k_many_avx2(&mut self, q: &[f64], out: &mut [f64]) {
+        self.k_many_in(q, out);
+    }
+
+    #[inline(always)]
+    fn k_many_in(&mut self, q: &[f64], out: &mut [f64]) {
         for (o, &q) in out.iter_mut().zip(q) {
-            let i = self.node(q);
-            *o = self.nodes[i].s.powi(-2);
+            let i = self.node::<true>(q);
+            *o = self.s[i].s.powi(-2);
         }
     }
 
     /// f_k², g_k² at the interface `k` of the stack served at the wavenumbers `q` (the values of
-    /// [`StackCache::response`]), into `f2` and `g2`.
+    /// [`StackCache::response`]), into `f2` and `g2`. The loop with S's kernels inlined is
+    /// compiled also for AVX2 (as `compute_s`).
     pub fn interface_many(&mut self, k: usize, q: &[f64], f2: &mut [f64], g2: &mut [f64]) {
+        with_avx2!(
+            self.interface_many_avx2(k, q, f2, g2),
+            self.interface_many_in(k, q, f2, g2)
+        )
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn interface_many_avx2(&mut self, k: usize, q: &[f64], f2: &mut [f64], g2: &mut [f64]) {
+        self.interface_many_in(k, q, f2, g2);
+    }
+
+    #[inline(always)]
+    fn interface_many_in(&mut self, k: usize, q: &[f64], f2: &mut [f64], g2: &mut [f64]) {
         let n = self.stack.layers.len();
         for ((fo, go), &q) in f2.iter_mut().zip(g2.iter_mut()).zip(q) {
-            let i = self.node(q);
-            if self.nodes[i].fg_generation != self.generation {
+            let i = self.node::<true>(q);
+            if self.fg_generation[i] != self.generation {
                 self.compute_interfaces(i);
             }
             let (f, g) = self.interfaces[i * n + k];
@@ -851,27 +912,32 @@ impl StackCache {
     /// S and every (f_k, g_k) of the stack served at wavenumber q ≥ 0 (1/m): the values of
     /// [`Stack::response_into`].
     pub fn response(&mut self, q: f64) -> (f64, &[(f64, f64)]) {
-        let i = self.node(q);
-        if self.nodes[i].fg_generation != self.generation {
+        let i = self.node::<false>(q);
+        if self.fg_generation[i] != self.generation {
             self.compute_interfaces(i);
         }
         let n = self.stack.layers.len();
-        (self.nodes[i].s, &self.interfaces[i * n..(i + 1) * n])
+        (self.s[i].s, &self.interfaces[i * n..(i + 1) * n])
     }
 
     /// The index of the node at q, kept if new, with S of the stack served computed if not yet
     /// in this generation. The nodes come mostly in the order kept and computed: the rest is
-    /// out of line.
-    #[inline]
-    fn node(&mut self, q: f64) -> usize {
+    /// out of line, S's kernels too unless `INLINE` (for the loops compiled twice, which are
+    /// then the kernels' build).
+    #[inline(always)]
+    fn node<const INLINE: bool>(&mut self, q: f64) -> usize {
         let bits = q.to_bits();
         let i = match self.keys.get(self.cursor + 1) {
             Some(&k) if k == bits => self.cursor + 1,
             _ => self.find_or_add(q),
         };
         self.cursor = i;
-        if self.nodes[i].generation != self.generation {
-            self.compute_s(i, q);
+        if self.s[i].generation != self.generation {
+            if INLINE {
+                self.compute_s_in(i, q);
+            } else {
+                self.compute_s(i, q);
+            }
         }
         i
     }
@@ -879,94 +945,120 @@ impl StackCache {
     /// The index of the node at q, kept if new (its base formed when first needed).
     #[inline(never)]
     fn find_or_add(&mut self, q: f64) -> usize {
-        let next = self.nodes.len();
+        let next = self.keys.len();
         let bits = q.to_bits();
         let i = *self.index.entry(bits).or_insert(next as u32) as usize;
         if i == next {
             let n = self.stack.layers.len();
-            let (above, below) = (self.varied + 1, n - self.varied - 1);
+            let below = n - self.varied - 1;
             self.keys.push(bits);
+            self.s.push(NodeS {
+                generation: 0,
+                s: 0.0,
+            });
+            self.fg_generation.push(0);
+            self.faces.push(None);
             self.base_steps
                 .resize(self.base_steps.len() + below, EMPTY_STEP);
-            self.upper_steps
-                .resize(self.upper_steps.len() + above, EMPTY_STEP);
             self.interfaces
                 .resize(self.interfaces.len() + n, (0.0, 0.0));
-            self.nodes.push(Node {
-                face: EMPTY_FACE,
-                based: false,
-                stepped: false,
-                generation: 0,
-                fg_generation: 0,
-                s: 0.0,
-                u0: [0.0; 2],
-            });
         }
         i
     }
 
     /// S of the stack served at node `i` (wavenumber q): the top layer's half-space's where
     /// q·d_1 > [`X_FAR`] ([`Stack::s_far`]: the same value to the last bit), else from its steps
-    /// above the base.
+    /// above the base, with the interface kernels where q·d_1 ≤ [`X_EAGER`]. Like
+    /// [`Self::compute_interfaces`], compiled also for AVX2 and run so where the CPU has it
+    /// (`crate::simd`: everything below is inlined into both builds; the same operations, so the
+    /// same values as [`Stack::response_into`]'s baseline build to the last bit).
     #[inline(never)]
     fn compute_s(&mut self, i: usize, q: f64) {
-        let node = &mut self.nodes[i];
-        node.generation = self.generation;
-        node.stepped = false;
-        if q * self.stack.layers[0].thickness > X_FAR {
-            node.s = self.s_far;
-        } else {
-            self.compute_steps(i, q);
-            let node = &mut self.nodes[i];
-            node.s = self.stack.s_of(node.u0);
-        }
+        with_avx2!(self.compute_s_avx2(i, q), self.compute_s_in(i, q))
     }
 
-    /// The steps above the base of the stack served at node `i` (wavenumber q) and the top
-    /// displacement `u0` (the base formed first if it is not yet).
-    fn compute_steps(&mut self, i: usize, q: f64) {
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn compute_s_avx2(&mut self, i: usize, q: f64) {
+        self.compute_s_in(i, q);
+    }
+
+    #[inline(always)]
+    fn compute_s_in(&mut self, i: usize, q: f64) {
+        let x = q * self.stack.layers[0].thickness;
+        let s = if x > X_FAR {
+            self.s_far
+        } else {
+            let u0 = self.compute_steps(i, q);
+            if x <= X_EAGER {
+                self.interfaces_at(i, u0);
+            }
+            self.stack.s_of(u0)
+        };
+        self.s[i] = NodeS {
+            generation: self.generation,
+            s,
+        };
+    }
+
+    /// The steps above the base of the stack served at node `i` (wavenumber q) into `upper`
+    /// (the base formed first if it is not yet), and the top displacement ũ(0) under
+    /// t(0) = (0, 1), in the top layer's units: where the downward pass starts.
+    #[inline(always)]
+    fn compute_steps(&mut self, i: usize, q: f64) -> V2 {
         let (n, above) = (self.stack.layers.len(), self.varied + 1);
         let below = n - above;
-        let node = &mut self.nodes[i];
-        if !node.based {
-            let sub = self.stack.substrate_stiffness();
-            let steps = &mut self.base_steps[i * below..(i + 1) * below];
-            let base_k = self.stack.up(q, above, sub, steps);
-            let c = &self.stack.consts[self.varied];
-            node.face = Face::new(c, scale(&base_k, c.inv_two_g));
-            node.based = true;
-        }
-        let upper = &mut self.upper_steps[i * above..(i + 1) * above];
-        self.stack.up_from_face(q, &node.face, upper);
-        node.u0 = self.stack.top_displacement(&upper[0], [0.0, 1.0]);
-        node.stepped = true;
+        let face = match &self.faces[i] {
+            Some(face) => face,
+            None => {
+                let sub = self.stack.substrate_stiffness();
+                let steps = &mut self.base_steps[i * below..(i + 1) * below];
+                let base_k = self.stack.up(q, above, sub, steps);
+                let c = &self.stack.consts[self.varied];
+                self.faces[i].insert(Face::new(c, scale(&base_k, c.inv_two_g)))
+            }
+        };
+        let upper = &mut self.upper[..above];
+        self.stack.up_from_face(q, face, upper);
+        self.stack.top_displacement(&upper[0], [0.0, 1.0])
     }
 
-    /// Every (f_k, g_k) of the stack served at node `i`, whose S is computed: the downward pass
-    /// (after the steps above the base, if S was the far form).
-    #[inline(never)]
-    fn compute_interfaces(&mut self, i: usize) {
-        if !self.nodes[i].stepped {
-            self.compute_steps(i, f64::from_bits(self.keys[i]));
-        }
+    /// Every (f_k, g_k) of the stack served at node `i` from the top displacement `u0` and the
+    /// steps above the base just formed ([`Self::compute_steps`]): the downward pass.
+    #[inline(always)]
+    fn interfaces_at(&mut self, i: usize, u0: V2) {
         let n = self.stack.layers.len();
         let (above, below) = (self.varied + 1, n - self.varied - 1);
-        let node = &mut self.nodes[i];
-        let upper = &self.upper_steps[i * above..(i + 1) * above];
         let lower = &self.base_steps[i * below..(i + 1) * below];
         let interfaces = &mut self.interfaces[i * n..(i + 1) * n];
         self.stack
-            .interfaces_from(node.u0, upper, lower, interfaces);
-        node.fg_generation = self.generation;
+            .interfaces_from(u0, &self.upper[..above], lower, interfaces);
+        self.fg_generation[i] = self.generation;
+    }
+
+    /// Every (f_k, g_k) of the stack served at node `i`, whose S is computed but not its
+    /// interface kernels (q·d_1 > [`X_EAGER`]): the steps above the base formed again, then the
+    /// downward pass.
+    #[inline(never)]
+    fn compute_interfaces(&mut self, i: usize) {
+        with_avx2!(
+            self.compute_interfaces_avx2(i),
+            self.compute_interfaces_in(i)
+        )
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn compute_interfaces_avx2(&mut self, i: usize) {
+        self.compute_interfaces_in(i);
+    }
+
+    #[inline(always)]
+    fn compute_interfaces_in(&mut self, i: usize) {
+        let u0 = self.compute_steps(i, f64::from_bits(self.keys[i]));
+        self.interfaces_at(i, u0);
     }
 }
-
-/// A placeholder face, overwritten before it is read.
-const EMPTY_FACE: Face = Face {
-    kb: I2,
-    r0: I2,
-    b0: I2,
-};
 
 /// A placeholder step, overwritten before it is read.
 const EMPTY_STEP: Step = Step::Thick {
@@ -976,12 +1068,14 @@ const EMPTY_STEP: Step = Step::Thick {
     i_er: I2,
 };
 
+#[inline(always)]
 fn scale_v(v: V2, s: f64) -> V2 {
     [v[0] * s, v[1] * s]
 }
 
 /// The thin-layer step with the propagator Q = exp(−xA) on the stiffness K̃_b below the layer,
 /// into `step` (written in place: a step is some hundred bytes); X and Y (K̃_t = X Y⁻¹).
+#[inline(always)]
 fn thin_step(c: &Consts, x: f64, kb: M2, step: &mut Step) -> (M2, M2) {
     let (p, [quu, qut, qtu, qtt]) = c.propagators_minus_i(x);
     let x_m = add(&add(&qtu, &kb), &mul(&qtt, &kb));
@@ -996,6 +1090,7 @@ fn thin_step(c: &Consts, x: f64, kb: M2, step: &mut Step) -> (M2, M2) {
 }
 
 /// [`thin_step`] and the stiffness K̃_t above the layer.
+#[inline(always)]
 fn thin_up(c: &Consts, x: f64, kb: M2, step: &mut Step) -> M2 {
     let (x_m, y_m) = thin_step(c, x, kb, step);
     mul_sym(&x_m, &inv(&y_m))
@@ -1013,6 +1108,7 @@ struct Face {
 
 impl Face {
     /// The face of layer `c` on the stiffness K̃_b (in its units) below it.
+    #[inline(always)]
     fn new(c: &Consts, kb: M2) -> Self {
         let ku_kb_inv = inv(&sub(&c.ku, &kb));
         Self {
@@ -1024,6 +1120,7 @@ impl Face {
 }
 
 /// The thick-layer step with decaying exponentials only, into `step`; ER.
+#[inline(always)]
 fn thick_step(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
     let e = (-x).exp();
     let xk = x / c.kappa;
@@ -1042,6 +1139,7 @@ fn thick_step(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
 }
 
 /// [`thick_step`] and the stiffness K̃_t above the layer.
+#[inline(always)]
 fn thick_up(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
     let er = thick_step(c, x, face, step);
     let i_er = add(&I2, &er);
@@ -1049,6 +1147,7 @@ fn thick_up(c: &Consts, x: f64, face: &Face, step: &mut Step) -> M2 {
 }
 
 /// The state (ũ_b, t_b) at a layer's bottom from (ũ_t, t_t) at its top.
+#[inline(always)]
 fn down(step: &Step, ut: V2, t: V2) -> (V2, V2) {
     match step {
         Step::Thick { kb, v_of_t, b, .. } => {

@@ -279,7 +279,9 @@ fn invalid_stacks_are_rejected_with_a_reason() {
 
 /// The per-node cache of a d_min search (`StackCache`) gives the exact recursion's values to the
 /// last bit while one layer after another changes thickness: 10 layers at neighbour modulus
-/// ratios 1e±8 with ν = ½ among them, q z from 1e-8 to 1e4, every node asked for twice.
+/// ratios 1e±8 with ν = ½ among them, q z from 1e-8 to 1e4, every node asked for twice. On a
+/// CPU with AVX2 the cache runs its AVX2 build (`crate::simd`) and the recursion its baseline
+/// one: this is also the test that both builds agree to the last bit.
 #[test]
 fn stack_cache_equals_the_exact_recursion() {
     use coatcheck::layer::stack::StackCache;
