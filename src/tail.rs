@@ -596,8 +596,9 @@ impl Polar {
             aa[i] = a;
             arg[i] = erfcx_far::exponent(u[i]);
         }
+        // The exponentials (libm's, not vectorised) at the 21 nodes only, not the padding.
         let (mut ex, mut f) = ([0.0; LANES], [0.0; LANES]);
-        for i in 0..LANES {
+        for i in 0..21 {
             ex[i] = arg[i].exp();
             f[i] = (nhq[i] - self.ref_f).exp();
         }
