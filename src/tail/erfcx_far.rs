@@ -31,8 +31,10 @@ const SA: [f64; 8] = [
     6.570_249_770_319_282,
     -0.060_424_415_214_858_1,
 ];
-/// R/S on [1/0.35, 28): RB0..RB6 and (1, SB1..SB7).
-const RB: [f64; 7] = [
+/// R/S on [1/0.35, 28): RB0..RB6 and (1, SB1..SB7), each with a zero appended so that both
+/// ranges run one Horner loop of eight steps (a leading zero coefficient leaves Horner's rule
+/// exact: its first step gives 0 + s·0 = 0).
+const RB: [f64; 8] = [
     -0.009_864_942_924_700_1,
     -0.799_283_237_680_523,
     -17.757_954_917_754_752,
@@ -40,8 +42,9 @@ const RB: [f64; 7] = [
     -637.566_443_368_389_6,
     -1_025.095_131_611_077_2,
     -483.519_191_608_651_4,
+    0.0,
 ];
-const SB: [f64; 7] = [
+const SB: [f64; 8] = [
     30.338_060_743_482_46,
     325.792_512_996_573_9,
     1_536.729_586_084_437,
@@ -49,25 +52,31 @@ const SB: [f64; 7] = [
     2_553.050_406_433_164_4,
     474.528_541_206_955_37,
     -22.440_952_446_585_82,
+    0.0,
 ];
 
 /// The high word of 1/0.35 in fdlibm's range test (the ranges split exactly where its erfc's
 /// do).
 const SPLIT_HIGH_WORD: u64 = 0x4006_db6d;
 
-/// a₀ + s(a₁ + s(a₂ + …)) by Horner's rule, in the order fdlibm evaluates it.
-fn horner(a: &[f64], s: f64) -> f64 {
-    a.iter().rev().fold(0.0, |acc, &c| c + s * acc)
-}
-
 /// erfcx(u) for 1.25 ≤ u < 28 (the caller keeps to that range).
 pub(super) fn erfcx_far(u: f64) -> f64 {
     debug_assert!((1.25..28.0).contains(&u));
+    exponent(u).exp() / u
+}
+
+/// The exponent R/S − 0.5625 of erfcx(u) = e^{R/S − 0.5625}/u, with no branch (the range's
+/// coefficients are selected per step, so that a loop over many u is vectorised): R and
+/// S − 1 by Horner's rule in s = 1/u², in the order fdlibm evaluates them.
+#[inline(always)]
+pub(super) fn exponent(u: f64) -> f64 {
     let s = 1.0 / (u * u);
-    let (r, big_s) = if u.to_bits() >> 32 < SPLIT_HIGH_WORD {
-        (horner(&RA, s), 1.0 + s * horner(&SA, s))
-    } else {
-        (horner(&RB, s), 1.0 + s * horner(&SB, s))
-    };
-    (r / big_s - 0.5625).exp() / u
+    let near = u.to_bits() >> 32 < SPLIT_HIGH_WORD;
+    let (mut r, mut q) = (0.0, 0.0);
+    for j in (0..8).rev() {
+        let (rc, qc) = if near { (RA[j], SA[j]) } else { (RB[j], SB[j]) };
+        r = rc + s * r;
+        q = qc + s * q;
+    }
+    r / (1.0 + s * q) - 0.5625
 }
