@@ -58,9 +58,7 @@ fn all_stress_checks_pass(
 
 /// The largest factor f in [SPAN, 1] such that `passes(g)` for every grid factor g ≤ f, refined
 /// by bisection; `None` when the smallest grid factor fails.
-pub(crate) fn largest_passing(
-    passes: impl Fn(f64) -> Result<bool, Error>,
-) -> Result<Option<f64>, Error> {
+fn largest_passing(passes: impl Fn(f64) -> Result<bool, Error>) -> Result<Option<f64>, Error> {
     let grid: Vec<f64> = (0..GRID)
         .map(|i| SPAN.powf(1.0 - i as f64 / (GRID - 1) as f64))
         .collect();
@@ -91,7 +89,7 @@ pub(crate) fn largest_passing(
 }
 
 /// The spectrum with its lowest octave scaled by `k` (tabulated, log-spaced).
-pub(crate) fn low_octave_scaled(spectrum: &Spectrum, k: f64) -> Result<Spectrum, Error> {
+fn low_octave_scaled(spectrum: &Spectrum, k: f64) -> Result<Spectrum, Error> {
     let (lo, hi) = spectrum.support();
     let edge = (2.0 * lo).min(hi);
     let n = ((hi / lo).log10() * TAB_PER_DECADE).ceil().max(2.0) as usize;
@@ -110,7 +108,7 @@ pub(crate) fn low_octave_scaled(spectrum: &Spectrum, k: f64) -> Result<Spectrum,
 }
 
 /// rms height of the lowest octave [q_L, 2 q_L], m.
-pub(crate) fn low_octave_rms(spectrum: &Spectrum) -> Result<f64, Error> {
+fn low_octave_rms(spectrum: &Spectrum) -> Result<f64, Error> {
     let (lo, hi) = spectrum.support();
     let octave = low_octave_scaled(spectrum, 1.0)?;
     let part = match octave {
@@ -172,33 +170,53 @@ pub fn levers(
             at: None,
         });
     }
-    let p0 = design.pressure;
+    let set_pressure = |at: &mut Design, p| at.pressure = p;
+    let passes = |s: &Spectrum, at: &Design| all_stress_checks_pass(s, at, settings, d);
+    out.extend(load_levers(
+        spectrum,
+        design,
+        design.pressure,
+        set_pressure,
+        passes,
+    )?);
+    Ok(out)
+}
+
+/// The pressure and low-octave-rms levers (a film's or a stack's `design`, at pressure `p0`):
+/// the largest pressure, and the largest rms of the lowest octave, at which `passes(spectrum,
+/// design)`; `set_pressure(design, p)` sets a design's pressure.
+pub(crate) fn load_levers<D: Clone>(
+    spectrum: &Spectrum,
+    design: &D,
+    p0: f64,
+    set_pressure: impl Fn(&mut D, f64),
+    passes: impl Fn(&Spectrum, &D) -> Result<bool, Error>,
+) -> Result<[Lever; 2], Error> {
     let pressure = largest_passing(|f| {
         let mut at = design.clone();
-        at.pressure = p0 * f;
-        all_stress_checks_pass(spectrum, &at, settings, d)
+        set_pressure(&mut at, p0 * f);
+        passes(spectrum, &at)
     })?;
-    out.push(Lever {
-        name: "pressure",
-        relation: "<=",
-        value: pressure.map(|f| p0 * f),
-        current: p0,
-        unit: "Pa",
-        at: None,
-    });
     let rms = low_octave_rms(spectrum)?;
-    let k = largest_passing(|k| {
-        all_stress_checks_pass(&low_octave_scaled(spectrum, k)?, design, settings, d)
-    })?;
-    out.push(Lever {
-        name: "low_octave_rms",
-        relation: "<=",
-        value: k.map(|k| rms * k.sqrt()),
-        current: rms,
-        unit: "m",
-        at: None,
-    });
-    Ok(out)
+    let k = largest_passing(|k| passes(&low_octave_scaled(spectrum, k)?, design))?;
+    Ok([
+        Lever {
+            name: "pressure",
+            relation: "<=",
+            value: pressure.map(|f| p0 * f),
+            current: p0,
+            unit: "Pa",
+            at: None,
+        },
+        Lever {
+            name: "low_octave_rms",
+            relation: "<=",
+            value: k.map(|k| rms * k.sqrt()),
+            current: rms,
+            unit: "m",
+            at: None,
+        },
+    ])
 }
 
 #[cfg(test)]

@@ -191,12 +191,13 @@ pub fn judge_scene(scene: &Scene, thickness: f64) -> Result<Robust, Error> {
     )
 }
 
-/// What one corner gives: its checks (strengths at their minima) and its d_min with the
-/// strengths at their maxima (when they have ranges and min-thickness runs).
-struct CornerRun {
-    values: Vec<f64>,
-    checks: Vec<CheckResult>,
-    thinnest: Option<Option<f64>>,
+/// What one corner gives (a film's or a stack's, `C` its checks): its checks (strengths at
+/// their minima) and its d_min with the strengths at their maxima (when they have ranges and
+/// min-thickness runs).
+pub(super) struct CornerRun<C> {
+    pub(super) values: Vec<f64>,
+    pub(super) checks: Vec<C>,
+    pub(super) thinnest: Option<Option<f64>>,
 }
 
 /// Judge `nominal` at `thickness` on `spectrum` at the worst corner of `ranges` (module docs;
@@ -213,21 +214,47 @@ pub fn judge_robust(
     let k = ranges.iter().filter(|(p, _)| p.elastic()).count();
     let strengths = ranges.iter().any(|(p, _)| !p.elastic());
     let min_on = nominal.criteria.checks.min_thickness;
-    let runs = (0..1usize << k)
+    let runs = run_corners(
+        k,
+        strengths && min_on,
+        |bits, strong| corner(nominal, &ranges, bits, strong),
+        |d| {
+            ranges
+                .iter()
+                .map(|(p, _)| p.value(d).unwrap_or(f64::NAN))
+                .collect()
+        },
+        |d| Ok(Checker::new(spectrum, d, settings)?.run(thickness)?.checks),
+        |d| {
+            Ok(Checker::new(spectrum, d, settings)?
+                .min_thickness()?
+                .thickness
+                .map(|e| e.value))
+        },
+    )?;
+    Ok(worst_of(ranges, &runs))
+}
+
+/// Every corner run in parallel (a film's or a stack's; `2^k` for `k` varied elastic
+/// ranges): `corner(bits, strong)` is its design (strengths at their maxima with `strong`),
+/// `values` the ranges' values in its weak design, `checks` the weak design's checks and, when
+/// `strong_d_min`, `d_min` the strong design's d_min.
+pub(super) fn run_corners<D, C: Send>(
+    k: usize,
+    strong_d_min: bool,
+    corner: impl Fn(usize, bool) -> Result<D, Error> + Sync,
+    values: impl Fn(&D) -> Vec<f64> + Sync,
+    checks: impl Fn(D) -> Result<Vec<C>, Error> + Sync,
+    d_min: impl Fn(D) -> Result<Option<f64>, Error> + Sync,
+) -> Result<Vec<CornerRun<C>>, Error> {
+    (0..1usize << k)
         .into_par_iter()
         .map(|bits| {
-            let weak = corner(nominal, &ranges, bits, false)?;
-            let values = ranges
-                .iter()
-                .map(|(p, _)| p.value(&weak).unwrap_or(f64::NAN))
-                .collect();
-            let checks = Checker::new(spectrum, weak, settings)?
-                .run(thickness)?
-                .checks;
-            let thinnest = if strengths && min_on {
-                let strong = corner(nominal, &ranges, bits, true)?;
-                let m = Checker::new(spectrum, strong, settings)?.min_thickness()?;
-                Some(m.thickness.map(|e| e.value))
+            let weak = corner(bits, false)?;
+            let values = values(&weak);
+            let checks = checks(weak)?;
+            let thinnest = if strong_d_min {
+                Some(d_min(corner(bits, true)?)?)
             } else {
                 None
             };
@@ -237,17 +264,33 @@ pub fn judge_robust(
                 thinnest,
             })
         })
-        .collect::<Result<Vec<_>, Error>>()?;
-    Ok(worst_of(ranges, &runs))
+        .collect()
 }
 
 /// The smaller margin first (`None`, no limit, is the worst).
-fn margin_key(c: &CheckResult) -> f64 {
+pub(super) fn margin_key(c: &CheckResult) -> f64 {
     c.margin.unwrap_or(f64::NEG_INFINITY)
 }
 
+/// The d_min range over the corners (a film's or a stack's), `min_check` finding a corner's
+/// min-thickness check among its checks.
+pub(super) fn min_thickness_range<C>(
+    runs: &[CornerRun<C>],
+    min_check: impl Fn(&C) -> Option<&CheckResult>,
+) -> MinThicknessRange {
+    let at = |r: &CornerRun<C>| r.checks.iter().find_map(&min_check).and_then(|c| c.limit);
+    // d_min with the strengths at their minima: the largest over the corners, or none if
+    // no thickness passes at one of them.
+    let weak: Option<Vec<f64>> = runs.iter().map(at).collect();
+    let strong = runs.iter().map(|r| r.thinnest.unwrap_or_else(|| at(r)));
+    MinThicknessRange {
+        min: strong.flatten().reduce(f64::min),
+        max: weak.and_then(|v| v.into_iter().reduce(f64::max)),
+    }
+}
+
 /// Each check's worst corner, the verdict, the governing corner and the d_min range.
-fn worst_of(ranges: Vec<(Param, Span)>, runs: &[CornerRun]) -> Robust {
+fn worst_of(ranges: Vec<(Param, Span)>, runs: &[CornerRun<CheckResult>]) -> Robust {
     let kinds: Vec<CheckKind> = runs[0].checks.iter().map(|c| c.kind).collect();
     let checks: Vec<WorstCheck> = kinds
         .iter()
@@ -268,20 +311,9 @@ fn worst_of(ranges: Vec<(Param, Span)>, runs: &[CornerRun]) -> Robust {
         .iter()
         .min_by(|a, b| margin_key(&a.result).total_cmp(&margin_key(&b.result)));
     let min_thickness = kinds.contains(&CheckKind::MinThickness).then(|| {
-        let at = |r: &CornerRun| {
-            r.checks
-                .iter()
-                .find(|c| c.kind == CheckKind::MinThickness)
-                .and_then(|c| c.limit)
-        };
-        // d_min with the strengths at their minima: the largest over the corners, or none if
-        // no thickness passes at one of them.
-        let weak: Option<Vec<f64>> = runs.iter().map(at).collect();
-        let strong = runs.iter().map(|r| r.thinnest.unwrap_or_else(|| at(r)));
-        MinThicknessRange {
-            min: strong.flatten().reduce(f64::min),
-            max: weak.and_then(|v| v.into_iter().reduce(f64::max)),
-        }
+        min_thickness_range(runs, |c| {
+            Some(c).filter(|c| c.kind == CheckKind::MinThickness)
+        })
     });
     Robust {
         pass: checks.iter().all(|c| c.result.pass),

@@ -13,7 +13,7 @@
 //! value down, then bisection), each step one new [`StackChecker`] and one evaluation.
 
 use super::CheckKind;
-use super::levers::{Lever, largest_passing, low_octave_rms, low_octave_scaled};
+use super::levers::{Lever, load_levers};
 use super::stack::{StackChecker, StackDesign, StackOutcome};
 use crate::Error;
 use crate::prec::Settings;
@@ -85,31 +85,14 @@ pub fn stack_levers(
             at,
         });
     }
-    let p0 = design.pressure;
-    let pressure = largest_passing(|f| {
-        let mut at = design.clone();
-        at.pressure = p0 * f;
-        stress_checks_pass(spectrum, &at, settings)
-    })?;
-    out.push(Lever {
-        name: "pressure",
-        relation: "<=",
-        value: pressure.map(|f| p0 * f),
-        current: p0,
-        unit: "Pa",
-        at: None,
-    });
-    let rms = low_octave_rms(spectrum)?;
-    let k = largest_passing(|k| {
-        stress_checks_pass(&low_octave_scaled(spectrum, k)?, design, settings)
-    })?;
-    out.push(Lever {
-        name: "low_octave_rms",
-        relation: "<=",
-        value: k.map(|k| rms * k.sqrt()),
-        current: rms,
-        unit: "m",
-        at: None,
-    });
+    let set_pressure = |at: &mut StackDesign, p| at.pressure = p;
+    let passes = |s: &Spectrum, at: &StackDesign| stress_checks_pass(s, at, settings);
+    out.extend(load_levers(
+        spectrum,
+        design,
+        design.pressure,
+        set_pressure,
+        passes,
+    )?);
     Ok(out)
 }

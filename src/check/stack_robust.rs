@@ -21,9 +21,9 @@
 //! The d_min range is the least and the largest d_min of the layer `thickness_of` over the
 //! corners.
 
-use super::robust::MinThicknessRange;
+use super::CheckKind;
+use super::robust::{CornerRun, MinThicknessRange, margin_key, min_thickness_range, run_corners};
 use super::stack::{StackCheck, StackChecker, StackDesign};
-use super::{CheckKind, CheckResult};
 use crate::error::Error;
 use crate::layer::Elastic;
 use crate::material::Span;
@@ -172,14 +172,6 @@ pub struct StackRobust {
     pub held: Vec<(usize, f64)>,
 }
 
-/// What one corner gives: its checks (strengths at their minima) and its d_min with the
-/// strengths at their maxima (when they have ranges and min-thickness runs).
-struct CornerRun {
-    values: Vec<f64>,
-    checks: Vec<StackCheck>,
-    thinnest: Option<Option<f64>>,
-}
-
 /// One corner's design: the varied elastic constants at an end (bit i of `bits` set: the
 /// maximum of the i-th varied), the held ones at their held value, each strength at its
 /// minimum, or at its maximum with `strong`.
@@ -288,42 +280,30 @@ pub fn judge_robust(
     let k = ranges.iter().filter(|(p, _)| p.elastic()).count() - held.len();
     let strengths = ranges.iter().any(|(p, _)| !p.elastic());
     let min_on = nominal.criteria.checks.min_thickness;
-    let runs = (0..1usize << k)
-        .into_par_iter()
-        .map(|bits| {
-            let weak = corner(nominal, &ranges, &held, bits, false)?;
-            let values = ranges
+    let runs = run_corners(
+        k,
+        strengths && min_on,
+        |bits, strong| corner(nominal, &ranges, &held, bits, strong),
+        |d| {
+            ranges
                 .iter()
-                .map(|(p, _)| p.value(&weak).unwrap_or(f64::NAN))
-                .collect();
-            let checks = StackChecker::new(spectrum, weak, settings)?.run()?.checks;
-            let thinnest = if strengths && min_on {
-                let strong = corner(nominal, &ranges, &held, bits, true)?;
-                let m = StackChecker::new(spectrum, strong, settings)?.min_thickness()?;
-                Some(m.thickness.map(|e| e.value))
-            } else {
-                None
-            };
-            Ok(CornerRun {
-                values,
-                checks,
-                thinnest,
-            })
-        })
-        .collect::<Result<Vec<_>, Error>>()?;
+                .map(|(p, _)| p.value(d).unwrap_or(f64::NAN))
+                .collect()
+        },
+        |d| Ok(StackChecker::new(spectrum, d, settings)?.run()?.checks),
+        |d| {
+            let m = StackChecker::new(spectrum, d, settings)?.min_thickness()?;
+            Ok(m.thickness.map(|e| e.value))
+        },
+    )?;
     Ok(worst_of(ranges, held, &runs))
-}
-
-/// The smaller margin first (`None`, no limit, is the worst).
-fn margin_key(c: &CheckResult) -> f64 {
-    c.margin.unwrap_or(f64::NEG_INFINITY)
 }
 
 /// Each check's worst corner, the verdict, the governing corner and the d_min range.
 fn worst_of(
     ranges: Vec<(StackParam, Span)>,
     held: Vec<(usize, f64)>,
-    runs: &[CornerRun],
+    runs: &[CornerRun<StackCheck>],
 ) -> StackRobust {
     let same = |a: &StackCheck, b: &StackCheck| a.result.kind == b.result.kind && a.at == b.at;
     let checks: Vec<StackWorstCheck> = runs[0]
@@ -349,20 +329,9 @@ fn worst_of(
         .iter()
         .any(|c| c.check.result.kind == CheckKind::MinThickness);
     let min_thickness = min_on.then(|| {
-        let at = |r: &CornerRun| {
-            r.checks
-                .iter()
-                .find(|c| c.result.kind == CheckKind::MinThickness)
-                .and_then(|c| c.result.limit)
-        };
-        // d_min with the strengths at their minima: the largest over the corners, or none if
-        // no thickness passes at one of them.
-        let weak: Option<Vec<f64>> = runs.iter().map(at).collect();
-        let strong = runs.iter().map(|r| r.thinnest.unwrap_or_else(|| at(r)));
-        MinThicknessRange {
-            min: strong.flatten().reduce(f64::min),
-            max: weak.and_then(|v| v.into_iter().reduce(f64::max)),
-        }
+        min_thickness_range(runs, |c| {
+            Some(&c.result).filter(|r| r.kind == CheckKind::MinThickness)
+        })
     });
     StackRobust {
         pass: checks.iter().all(|c| c.check.result.pass),

@@ -16,6 +16,7 @@ use super::{
 };
 use crate::check::levers::Lever;
 use crate::check::{CheckKind, CheckResult, Outcome};
+use crate::contact::SlidingShear;
 use crate::error::Error;
 use crate::pipeline::Judged;
 use crate::prec::Estimate;
@@ -435,7 +436,6 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
     };
     let scene = &j.scene;
     let verdict = if j.pass() { "pass" } else { "fail" };
-    let several = !j.files.is_empty();
     Ok(match format {
         Format::Table => {
             let mut t = format!(
@@ -458,12 +458,7 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
             // JSON shows NaN as null: the table of the same numbers is checked instead.
             super::finite_only(&human(scene, outcome, &j.levers))?;
             let mut v = json(scene, outcome, &j.levers);
-            if several {
-                let worst = j.worst_file().map(|p| p.display().to_string());
-                v["worst_file"] = json!(worst);
-                v["files"] = json!(j.files);
-                v["warnings"] = json!(j.warnings);
-            }
+            put_files(&mut v, j);
             if let (Some(x), Some(o)) = (&j.exact, v.as_object_mut()) {
                 o.insert("verify".into(), verify::check_json(x, outcome));
                 o.insert("exact".into(), verify::exact_json(x, outcome));
@@ -476,11 +471,25 @@ pub fn scene(j: &Judged, format: Format) -> Result<String, Error> {
             }
             format!("{v:#}\n")
         }
-        Format::Csv => {
-            let file = scene.file.clone().unwrap_or_else(|| "scene".into());
-            batch::records_csv(&[batch::Record::judged(&file, j, 0.0)])?
-        }
+        Format::Csv => scene_csv(j)?,
     })
+}
+
+/// The per-file keys of a judged scene's JSON (a film's or a stack's) when its scene lists
+/// several roughness files: `worst_file`, `files` and the warnings of all of them.
+pub(super) fn put_files(v: &mut Value, j: &Judged) {
+    if !j.files.is_empty() {
+        let worst = j.worst_file().map(|p| p.display().to_string());
+        v["worst_file"] = json!(worst);
+        v["files"] = json!(j.files);
+        v["warnings"] = json!(j.warnings);
+    }
+}
+
+/// The CSV of a judged scene (a film's or a stack's): the batch's one row.
+pub(super) fn scene_csv(j: &Judged) -> Result<String, Error> {
+    let file = j.scene.file.clone().unwrap_or_else(|| "scene".into());
+    batch::records_csv(&[batch::Record::judged(&file, j, 0.0)])
 }
 
 /// `key` and `key_err`: an estimate's value and error (null when absent).
@@ -520,19 +529,36 @@ pub(crate) fn put_min_thickness(
     );
 }
 
+/// The keys a report's JSON (a film's or a stack's) starts with: the versions, the verdict, the
+/// thickness (a stack's of the layer `criteria.thickness_of`) and the pressure.
+pub(super) fn put_head(m: &mut Map<String, Value>, pass: bool, thickness: f64, pressure: f64) {
+    m.insert("schema_version".into(), json!(super::SCHEMA_VERSION));
+    m.insert("coatcheck_version".into(), json!(env!("CARGO_PKG_VERSION")));
+    m.insert("verdict".into(), json!(if pass { "pass" } else { "fail" }));
+    m.insert("thickness_m".into(), json!(thickness));
+    m.insert("pressure_pa".into(), json!(pressure));
+}
+
+/// The sliding keys of an interface under the vector rule (a film's, a stack's at each
+/// interface and at the top level its bottom interface's): the mean shear, the rms of τ_x and
+/// τ_y and the paper's rule's peak of the static shear, each with `_err`.
+pub(super) fn put_sliding(
+    m: &mut Map<String, Value>,
+    s: &SlidingShear,
+    tau_peak_static: Option<Estimate>,
+) {
+    put(m, "mean_interface_shear_pa", Some(s.mean));
+    put(m, "tau_x_rms_interface_pa", Some(s.tau_x_rms));
+    put(m, "tau_y_rms_interface_pa", Some(s.tau_y_rms));
+    put(m, "tau_peak_static_pa", tau_peak_static);
+}
+
 /// The JSON object (see the module docs for the keys).
 pub fn json(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> Value {
     let ev = &outcome.evaluation;
     let c = &ev.contact;
     let mut m = Map::new();
-    m.insert("schema_version".into(), json!(super::SCHEMA_VERSION));
-    m.insert("coatcheck_version".into(), json!(env!("CARGO_PKG_VERSION")));
-    m.insert(
-        "verdict".into(),
-        json!(if outcome.pass { "pass" } else { "fail" }),
-    );
-    m.insert("thickness_m".into(), json!(outcome.thickness));
-    m.insert("pressure_pa".into(), json!(scene.pressure));
+    put_head(&mut m, outcome.pass, outcome.thickness, scene.pressure);
     put(&mut m, "area_fraction", Some(c.area_fraction));
     put(
         &mut m,
@@ -548,10 +574,7 @@ pub fn json(scene: &Scene, outcome: &Outcome, levers: &[Lever]) -> Value {
     if let Some(s) = &ev.sliding {
         m.insert("shear_tail".into(), json!(ev.shear_tail.name()));
         m.insert("friction".into(), json!(s.friction));
-        put(&mut m, "mean_interface_shear_pa", Some(s.mean));
-        put(&mut m, "tau_x_rms_interface_pa", Some(s.tau_x_rms));
-        put(&mut m, "tau_y_rms_interface_pa", Some(s.tau_y_rms));
-        put(&mut m, "tau_peak_static_pa", ev.tau_peak_static);
+        put_sliding(&mut m, s, ev.tau_peak_static);
         m.insert("friction_coupling".into(), json!(s.coupling));
     }
     m.insert("bond_exceedance".into(), json!(ev.bond_exceedance));

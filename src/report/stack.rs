@@ -21,7 +21,9 @@
 //! at every interface. (A stack's normal–tangential coupling, the film's `friction_coupling`,
 //! is not evaluated.)
 
-use super::check::{check_cells, check_json, put, put_min_thickness};
+use super::check::{
+    check_cells, check_json, put, put_files, put_head, put_min_thickness, put_sliding, scene_csv,
+};
 use super::{Format, batch, margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
 use crate::check::ShearTail;
 use crate::check::levers::Lever;
@@ -67,18 +69,10 @@ pub fn scene(j: &Judged, o: &StackOutcome, format: Format) -> Result<String, Err
                 v["robust"] = super::stack_robust::json_value(r, &scene.stack_design(), o);
                 v["verdict_with_robust"] = json!(if j.pass() { "pass" } else { "fail" });
             }
-            if !j.files.is_empty() {
-                let worst = j.worst_file().map(|p| p.display().to_string());
-                v["worst_file"] = json!(worst);
-                v["files"] = json!(j.files);
-                v["warnings"] = json!(j.warnings);
-            }
+            put_files(&mut v, j);
             format!("{v:#}\n")
         }
-        Format::Csv => {
-            let file = scene.file.clone().unwrap_or_else(|| "scene".into());
-            batch::records_csv(&[batch::Record::judged(&file, j, 0.0)])?
-        }
+        Format::Csv => scene_csv(j)?,
     })
 }
 
@@ -88,17 +82,8 @@ pub fn json(scene: &Scene, o: &StackOutcome, levers: &[Lever]) -> Value {
     let bottom = o.interfaces.last().expect("a stack has an interface");
     let design = scene.stack_design();
     let mut m = Map::new();
-    m.insert("schema_version".into(), json!(super::SCHEMA_VERSION));
-    m.insert("coatcheck_version".into(), json!(env!("CARGO_PKG_VERSION")));
-    m.insert(
-        "verdict".into(),
-        json!(if o.pass { "pass" } else { "fail" }),
-    );
-    m.insert(
-        "thickness_m".into(),
-        json!(design.layers[design.thickness_of].thickness),
-    );
-    m.insert("pressure_pa".into(), json!(scene.pressure));
+    let thickness = design.layers[design.thickness_of].thickness;
+    put_head(&mut m, o.pass, thickness, scene.pressure);
     put(&mut m, "area_fraction", Some(c.area_fraction));
     put(
         &mut m,
@@ -114,7 +99,7 @@ pub fn json(scene: &Scene, o: &StackOutcome, levers: &[Lever]) -> Value {
     if let Some(s) = &bottom.sliding {
         m.insert("shear_tail".into(), json!(o.shear_tail.name()));
         m.insert("friction".into(), json!(s.friction));
-        put_sliding(&mut m, bottom);
+        put_interface_sliding(&mut m, bottom);
     }
     put_min_thickness(&mut m, o.min_thickness.as_ref());
     m.insert(
@@ -134,7 +119,7 @@ pub fn json(scene: &Scene, o: &StackOutcome, levers: &[Lever]) -> Value {
             put(&mut v, "sigma_peak_pa", Some(i.sigma_peak));
             v.insert("bond_strength_pa".into(), json!(i.bond_strength));
             v.insert("bond_exceedance".into(), json!(i.bond_exceedance));
-            put_sliding(&mut v, i);
+            put_interface_sliding(&mut v, i);
             Value::Object(v)
         })
         .collect();
@@ -172,12 +157,9 @@ pub fn json(scene: &Scene, o: &StackOutcome, levers: &[Lever]) -> Value {
 }
 
 /// The film's sliding keys of an interface under the vector rule (none otherwise).
-fn put_sliding(m: &mut Map<String, Value>, i: &InterfaceEvaluation) {
+fn put_interface_sliding(m: &mut Map<String, Value>, i: &InterfaceEvaluation) {
     if let Some(s) = &i.sliding {
-        put(m, "mean_interface_shear_pa", Some(s.mean));
-        put(m, "tau_x_rms_interface_pa", Some(s.tau_x_rms));
-        put(m, "tau_y_rms_interface_pa", Some(s.tau_y_rms));
-        put(m, "tau_peak_static_pa", i.tau_peak_static);
+        put_sliding(m, s, i.tau_peak_static);
     }
 }
 

@@ -6,27 +6,33 @@
 //! sentences for the HTML report.
 
 use super::check::{check_json, check_rows_of};
-use super::robust::{d_min_text, end, verdict};
+use super::robust::{
+    Ranged, corner_json, corner_texts, d_min_range_line, d_min_text, nominal_d_min, range_texts,
+    ranges_json, ranges_table, verdict,
+};
 use super::{modulus, mpa, table, wrap};
 use crate::check::stack::{StackDesign, StackOutcome};
 use crate::check::stack_robust::{MAX_VARIED, StackParam, StackRobust};
-use serde_json::{Map, Value, json};
+use serde_json::{Value, json};
 
-/// A property's value in the unit people read it in.
-fn show(p: StackParam, v: f64) -> String {
-    match p {
-        _ if p.is_ratio() => v.to_string(),
-        StackParam::YieldStrength | StackParam::BondStrength(_) => format!("{} MPa", mpa(v)),
-        _ => modulus(v),
+impl Ranged for StackParam {
+    type Design = StackDesign;
+    fn key(self) -> String {
+        StackParam::key(self)
     }
-}
-
-/// The nominal d_min (m), when min-thickness ran and a thickness passes.
-fn nominal_d_min(o: &StackOutcome) -> Option<f64> {
-    o.min_thickness
-        .as_ref()
-        .and_then(|m| m.thickness)
-        .map(|e| e.value)
+    fn unit(self) -> &'static str {
+        StackParam::unit(self)
+    }
+    fn nominal(self, design: &StackDesign) -> Option<f64> {
+        self.value(design)
+    }
+    fn show(self, v: f64) -> String {
+        match self {
+            _ if self.is_ratio() => v.to_string(),
+            StackParam::YieldStrength | StackParam::BondStrength(_) => format!("{} MPa", mpa(v)),
+            _ => modulus(v),
+        }
+    }
 }
 
 /// Whether range `i` is held at one end.
@@ -53,25 +59,7 @@ pub fn table_text(r: &StackRobust, design: &StackDesign, o: &StackOutcome) -> St
         }
     ));
     out.push('\n');
-    if r.ranges.is_empty() {
-        out += "no property has a range of non-zero width: the robust verdict is the nominal one\n";
-    } else {
-        let mut t = table(&["property", "nominal", "range", "governing corner"]);
-        for (i, (p, s)) in r.ranges.iter().enumerate() {
-            let nominal = p.value(design).map_or("-".into(), |v| show(*p, v));
-            let corner = r.corner.get(i).map_or("-".into(), |&v| {
-                let how = if held(r, i) { ", held" } else { "" };
-                format!("{} ({}{how})", show(*p, v), end(v, s.min))
-            });
-            t.add_row(vec![
-                p.key(),
-                nominal,
-                format!("{} to {}", show(*p, s.min), show(*p, s.max)),
-                corner,
-            ]);
-        }
-        out += &format!("{t}\n");
-    }
+    out += &ranges_table(&r.ranges, &r.corner, design, |i| held(r, i));
     let mut t = table(&[
         "check",
         "at",
@@ -103,50 +91,22 @@ pub fn table_text(r: &StackRobust, design: &StackDesign, o: &StackOutcome) -> St
             .unwrap_or_default()
     );
     if let Some(m) = &r.min_thickness {
-        out += &format!(
-            "d_min over the corners: {} to {} (nominal {})\n",
-            d_min_text(m.min),
-            d_min_text(m.max),
-            d_min_text(nominal_d_min(o))
-        );
+        out += &d_min_range_line(m, nominal_d_min(o.min_thickness.as_ref()));
     }
     out
 }
 
-/// The corner as `{key: value}` (SI).
-fn corner_json(r: &StackRobust, corner: &[f64]) -> Map<String, Value> {
-    r.ranges
-        .iter()
-        .zip(corner)
-        .map(|((p, _), v)| (p.key(), json!(v)))
-        .collect()
-}
-
 /// The `robust` object of a stack.
 pub fn json_value(r: &StackRobust, design: &StackDesign, o: &StackOutcome) -> Value {
-    let ranges: Vec<Value> = r
-        .ranges
-        .iter()
-        .enumerate()
-        .map(|(i, (p, s))| {
-            json!({
-                "key": p.key(),
-                "unit": p.unit(),
-                "nominal": p.value(design),
-                "min": s.min,
-                "max": s.max,
-                "governing_corner": r.corner.get(i),
-                "held": held(r, i),
-            })
-        })
-        .collect();
+    let ranges = ranges_json(&r.ranges, &r.corner, design, Some(&|i| held(r, i)));
     let checks: Vec<Value> = r
         .checks
         .iter()
         .map(|c| {
             let mut m = check_json(&c.check.result);
             m.insert("at".into(), json!(c.check.at));
-            m.insert("corner".into(), Value::Object(corner_json(r, &c.corner)));
+            let corner = corner_json(&r.ranges, &c.corner);
+            m.insert("corner".into(), Value::Object(corner));
             Value::Object(m)
         })
         .collect();
@@ -155,14 +115,14 @@ pub fn json_value(r: &StackRobust, design: &StackDesign, o: &StackOutcome) -> Va
         "nominal_verdict": if o.pass { "pass" } else { "fail" },
         "governing_check": r.governing.as_ref().map(|(k, _)| k.name()),
         "governing_at": r.governing.as_ref().map(|(_, at)| at),
-        "governing_corner": corner_json(r, &r.corner),
+        "governing_corner": corner_json(&r.ranges, &r.corner),
         "corners": r.corners,
         "ranges": ranges,
         "checks": checks,
         "min_thickness_range_m": r.min_thickness.map(|m| json!({
             "min": m.min,
             "max": m.max,
-            "nominal": nominal_d_min(o),
+            "nominal": nominal_d_min(o.min_thickness.as_ref()),
         })),
     })
 }
@@ -178,29 +138,8 @@ pub fn sentences(r: &StackRobust, design: &StackDesign, o: &StackOutcome) -> Vec
                 .into(),
         ];
     }
-    let ranges: Vec<String> = r
-        .ranges
-        .iter()
-        .map(|(p, s)| {
-            let nominal = p.value(design).map_or("-".into(), |v| show(*p, v));
-            format!(
-                "{} {nominal} ({} to {})",
-                p.key(),
-                show(*p, s.min),
-                show(*p, s.max)
-            )
-        })
-        .collect();
-    let corner: Vec<String> = r
-        .ranges
-        .iter()
-        .zip(&r.corner)
-        .enumerate()
-        .map(|(i, ((p, s), &v))| {
-            let how = if held(r, i) { ", held" } else { "" };
-            format!("{} = {} ({}{how})", p.key(), show(*p, v), end(v, s.min))
-        })
-        .collect();
+    let ranges = range_texts(&r.ranges, design);
+    let corner = corner_texts(&r.ranges, &r.corner, |i| held(r, i));
     let held_note = if r.held.is_empty() {
         String::new()
     } else {
@@ -251,7 +190,7 @@ pub fn sentences(r: &StackRobust, design: &StackDesign, o: &StackOutcome) -> Vec
             design.layers[design.thickness_of].name,
             d_min_text(m.min),
             d_min_text(m.max),
-            d_min_text(nominal_d_min(o))
+            d_min_text(nominal_d_min(o.min_thickness.as_ref()))
         ));
     }
     out

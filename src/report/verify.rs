@@ -10,10 +10,11 @@ use crate::error::Error;
 use crate::exact::min_thickness::ExactMinThickness;
 use crate::layer::Stack;
 use crate::pipeline::Exact;
+use crate::prec::Estimate;
 use crate::verify::boundary::BoundaryDecision;
 use crate::verify::sliding::ExactSliding;
 use crate::verify::{Comparison, ExactCheck, check_rows};
-use serde_json::{Value, json};
+use serde_json::{Map, Value, json};
 use std::io::Write;
 use std::path::Path;
 
@@ -237,36 +238,60 @@ pub fn write_fields(
     sol: &BemSolution,
     f: &InterfaceFields,
 ) -> Result<(), Error> {
+    fields_csv(path, s, sol, std::slice::from_ref(f), |_| {
+        ",sigma_n_interface_pa,tau_x_pa,tau_y_pa,tau_abs_pa".into()
+    })
+}
+
+/// The fields of a solve as CSV (a film's or a stack's): x, y, height, pressure, gap, then σ_n,
+/// τ_x, τ_y, |τ| at every interface of `fields`, whose header columns are `columns(k)` for
+/// the k-th (from 1).
+pub(super) fn fields_csv(
+    path: &Path,
+    s: &Surface,
+    sol: &BemSolution,
+    fields: &[InterfaceFields],
+    columns: impl Fn(usize) -> String,
+) -> Result<(), Error> {
     super::write_with(path, |w: &mut dyn Write| {
-        writeln!(
-            w,
-            "x_m,y_m,height_m,pressure_pa,gap_m,sigma_n_interface_pa,tau_x_pa,tau_y_pa,tau_abs_pa"
-        )?;
+        write!(w, "x_m,y_m,height_m,pressure_pa,gap_m")?;
+        for k in 1..=fields.len() {
+            write!(w, "{}", columns(k))?;
+        }
+        writeln!(w)?;
         for iy in 0..s.ny {
             for ix in 0..s.nx {
                 let i = iy * s.nx + ix;
-                writeln!(
+                write!(
                     w,
-                    "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+                    "{:e},{:e},{:e},{:e},{:e}",
                     ix as f64 * s.dx,
                     iy as f64 * s.dy,
                     s.heights[i],
                     sol.pressure[i],
-                    sol.gap[i],
-                    f.normal[i],
-                    f.shear_x[i],
-                    f.shear_y[i],
-                    f.shear_magnitude(i)
+                    sol.gap[i]
                 )?;
+                for f in fields {
+                    write!(
+                        w,
+                        ",{:e},{:e},{:e},{:e}",
+                        f.normal[i],
+                        f.shear_x[i],
+                        f.shear_y[i],
+                        f.shear_magnitude(i)
+                    )?;
+                }
+                writeln!(w)?;
             }
         }
         Ok(())
     })
 }
 
-/// A value of the `check --verify` section in human units: stresses (keys ending in `_pa`) in
-/// MPa, thicknesses (`_m`) in µm, the rest as they are, 4 significant digits.
-fn show(key: &str, x: f64) -> String {
+/// A value of the `check --verify` section (a film's or a stack's) in human units: stresses
+/// (keys ending in `_pa`) in MPa, thicknesses (`_m`) in µm, the rest as they are, 4 significant
+/// digits.
+pub(super) fn show(key: &str, x: f64) -> String {
     if key.ends_with("_pa") {
         format!("{} MPa", sig(x * 1e-6, 4))
     } else if key.ends_with("_m") {
@@ -341,21 +366,8 @@ pub fn check_table(x: &Exact, outcome: &Outcome) -> String {
     head.push("exact/Persson");
     let mut t = table(&head);
     for r in check_rows(ev, v) {
-        let (name, key, p, e) = (r.name, r.key, r.persson, r.exact);
-        let ratio = p
-            .filter(|p| p.value != 0.0)
-            .map_or("-".into(), |p| sig(e.value / p.value, 3));
-        let mut row = vec![
-            name.to_string(),
-            p.map_or("-".into(), |p| show(key, p.value)),
-            show(key, e.value),
-            show(key, e.err),
-        ];
-        if let Some(s) = spread {
-            row.push(s.spread_of(key).map_or("-".into(), |s| show(key, s)));
-        }
-        row.push(ratio);
-        t.add_row(row);
+        let s = spread.map(|s| s.spread_of(r.key));
+        t.add_row(row_cells(None, r.name, r.key, r.persson, r.exact, s));
     }
     out += &format!("{t}\n");
     let mut c = table(&[
@@ -415,6 +427,91 @@ pub fn check_table(x: &Exact, outcome: &Outcome) -> String {
     out
 }
 
+/// One row of a `check --verify` table (a film's or a stack's): the place `at` (a stack's),
+/// the quantity, Persson's value, the exact one and its error, the spread over the realisations
+/// (`spread`, `Some` when there are realisations) and exact/Persson.
+pub(super) fn row_cells(
+    at: Option<&str>,
+    name: &str,
+    key: &str,
+    p: Option<Estimate>,
+    e: Estimate,
+    spread: Option<Option<f64>>,
+) -> Vec<String> {
+    let ratio = p
+        .filter(|p| p.value != 0.0)
+        .map_or("-".into(), |p| sig(e.value / p.value, 3));
+    let mut row: Vec<String> = at.map(str::to_string).into_iter().collect();
+    row.extend([
+        name.to_string(),
+        p.map_or("-".into(), |p| show(key, p.value)),
+        show(key, e.value),
+        show(key, e.err),
+    ]);
+    if let Some(s) = spread {
+        row.push(s.map_or("-".into(), |s| show(key, s)));
+    }
+    row.push(ratio);
+    row
+}
+
+/// One quantity of the `check --verify` JSON (a film's or a stack's): the exact value as `key`,
+/// its error as `key_err` and Persson's as `persson_key`.
+pub(super) fn put_row(m: &mut Map<String, Value>, key: &str, p: Option<Estimate>, e: Estimate) {
+    m.insert(key.into(), json!(e.value));
+    m.insert(format!("{key}_err"), json!(e.err));
+    m.insert(format!("persson_{key}"), json!(p.map(|p| p.value)));
+}
+
+/// One quantity of an `exact` object (a film's or a stack's): the exact value as `key`, its
+/// error as `key_err`, its spread over the realisations as `key_spread` (null on a map) and its
+/// ratio to Persson's as `key_ratio`.
+pub(super) fn put_exact_row(
+    m: &mut Map<String, Value>,
+    key: &str,
+    p: Option<Estimate>,
+    e: Estimate,
+    spread: Option<f64>,
+) {
+    m.insert(key.into(), json!(e.value));
+    m.insert(format!("{key}_err"), json!(e.err));
+    m.insert(format!("{key}_spread"), json!(spread));
+    m.insert(
+        format!("{key}_ratio"),
+        json!(p.filter(|p| p.value != 0.0).map(|p| e.value / p.value)),
+    );
+}
+
+/// The keys a `check --verify` section (a film's or a stack's) starts with: the map, its
+/// pixels and q_L d (a stack's q_L z at the bottom interface).
+pub(super) fn check_head(m: &mut Map<String, Value>, map: &Path, nx: usize, ny: usize, q_low: f64) {
+    m.insert("map".into(), json!(map.display().to_string()));
+    m.insert("nx".into(), json!(nx));
+    m.insert("ny".into(), json!(ny));
+    m.insert("q_low_d".into(), json!(q_low));
+}
+
+/// The surface keys of an `exact` object (a film's or a stack's): `surface`, `source`,
+/// `realisations`, `nx`, `ny` and `unresolved_slope_share`; `r` is the realisations' count and
+/// unresolved slope share when there are realisations.
+pub(super) fn surface_json(
+    m: &mut Map<String, Value>,
+    map: &Path,
+    nx: usize,
+    ny: usize,
+    r: Option<(usize, f64)>,
+) {
+    m.insert(
+        "surface".into(),
+        json!(if r.is_some() { "realisations" } else { "map" }),
+    );
+    m.insert("source".into(), json!(map.display().to_string()));
+    m.insert("realisations".into(), json!(r.map_or(1, |r| r.0)));
+    m.insert("nx".into(), json!(nx));
+    m.insert("ny".into(), json!(ny));
+    m.insert("unresolved_slope_share".into(), json!(r.map(|r| r.1)));
+}
+
 /// Persson's and the exact minimum thickness side by side, with their errors, after `what`.
 pub(super) fn min_thickness_line(
     what: &str,
@@ -464,16 +561,10 @@ pub(super) fn exact_check_json(c: &ExactCheck) -> Value {
 /// The `check --verify` section as a JSON value (`verify`).
 pub fn check_json(x: &Exact, outcome: &Outcome) -> Value {
     let (v, ev) = (&x.verification, &outcome.evaluation);
-    let mut m = serde_json::Map::new();
-    m.insert("map".into(), json!(x.map.display().to_string()));
-    m.insert("nx".into(), json!(v.nx));
-    m.insert("ny".into(), json!(v.ny));
-    m.insert("q_low_d".into(), json!(v.q_low_d));
+    let mut m = Map::new();
+    check_head(&mut m, &x.map, v.nx, v.ny, v.q_low_d);
     for r in check_rows(ev, v) {
-        let (key, p, e) = (r.key, r.persson, r.exact);
-        m.insert(key.into(), json!(e.value));
-        m.insert(format!("{key}_err"), json!(e.err));
-        m.insert(format!("persson_{key}"), json!(p.map(|p| p.value)));
+        put_row(&mut m, r.key, r.persson, r.exact);
     }
     m.insert("peaks_resolved".into(), json!(v.tau_peak.resolved));
     if let Some(s) = &v.sliding {
@@ -494,14 +585,16 @@ pub fn check_json(x: &Exact, outcome: &Outcome) -> Value {
 }
 
 /// The `min_thickness_*` keys of an `exact` object (a film's or a stack's): the exact d_min with
-/// its error and parts, its spread over realisations, its ratio to Persson's d_min `persson`, the
-/// check that sets it and the solves it took; null where the search did not run.
+/// its error and parts, its spread over realisations, its ratio to Persson's d_min (of
+/// `persson`), the check that sets it and the solves it took; null where the search did not
+/// run.
 pub(super) fn min_thickness_json(
-    m: &mut serde_json::Map<String, Value>,
+    m: &mut Map<String, Value>,
     min: Option<&ExactMinThickness>,
     spread: Option<f64>,
-    persson: Option<f64>,
+    persson: Option<&MinThickness>,
 ) {
+    let persson = persson.and_then(|p| p.thickness).map(|p| p.value);
     let d = min.and_then(ExactMinThickness::thickness);
     m.insert("min_thickness_m".into(), json!(d.map(|d| d.value)));
     m.insert("min_thickness_m_err".into(), json!(d.map(|d| d.err)));
@@ -535,46 +628,22 @@ pub(super) fn min_thickness_json(
 pub fn exact_json(x: &Exact, outcome: &Outcome) -> Value {
     let (v, ev) = (&x.verification, &outcome.evaluation);
     let r = x.realisations.as_ref();
-    let mut m = serde_json::Map::new();
+    let mut m = Map::new();
     m.insert(
         "verdict".into(),
         json!(if v.pass { "pass" } else { "fail" }),
     );
-    m.insert(
-        "surface".into(),
-        json!(if r.is_some() { "realisations" } else { "map" }),
-    );
-    m.insert("source".into(), json!(x.map.display().to_string()));
-    m.insert("realisations".into(), json!(r.map_or(1, |r| r.count)));
-    m.insert("nx".into(), json!(v.nx));
-    m.insert("ny".into(), json!(v.ny));
-    m.insert(
-        "unresolved_slope_share".into(),
-        json!(r.map(|r| r.grid.unresolved_slope_share)),
-    );
-    let persson = outcome
-        .min_thickness
-        .as_ref()
-        .and_then(|p| p.thickness)
-        .map(|p| p.value);
+    let surface = r.map(|r| (r.count, r.grid.unresolved_slope_share));
+    surface_json(&mut m, &x.map, v.nx, v.ny, surface);
     min_thickness_json(
         &mut m,
         x.min_thickness.as_ref(),
         r.map(|r| r.min_thickness_spread),
-        persson,
+        outcome.min_thickness.as_ref(),
     );
     for row in check_rows(ev, v) {
-        let (key, p, e) = (row.key, row.persson, row.exact);
-        m.insert(key.into(), json!(e.value));
-        m.insert(format!("{key}_err"), json!(e.err));
-        m.insert(
-            format!("{key}_spread"),
-            json!(r.and_then(|r| r.spread_of(key))),
-        );
-        m.insert(
-            format!("{key}_ratio"),
-            json!(p.filter(|p| p.value != 0.0).map(|p| e.value / p.value)),
-        );
+        let spread = r.and_then(|r| r.spread_of(row.key));
+        put_exact_row(&mut m, row.key, row.persson, row.exact, spread);
     }
     m.insert(
         "checks".into(),

@@ -18,7 +18,8 @@
 //! vector's keys), the checks with `at`, the solver and the exact verdict.
 
 use super::verify::{
-    exact_check_json, min_thickness_json, min_thickness_line, sliding_json, solver_json, stats_json,
+    check_head, exact_check_json, fields_csv, min_thickness_json, min_thickness_line,
+    put_exact_row, put_row, row_cells, show, sliding_json, solver_json, stats_json, surface_json,
 };
 use super::{margin_cell, modulus, mpa, sig, table, um, utilisation_cell, wrap};
 use crate::bem::{BemSolution, InterfaceFields, Surface};
@@ -36,7 +37,6 @@ use crate::verify::sliding::{
 };
 use crate::verify_stack::{StackComparison, StackVerification};
 use serde_json::{Map, Value, json};
-use std::io::Write;
 use std::path::Path;
 
 /// What `coatcheck verify --layer` was asked: the map file, the stack, the layers' names (top
@@ -295,41 +295,8 @@ pub fn write_fields(
     sol: &BemSolution,
     fields: &[InterfaceFields],
 ) -> Result<(), Error> {
-    super::write_with(path, |w: &mut dyn Write| {
-        write!(w, "x_m,y_m,height_m,pressure_pa,gap_m")?;
-        for k in 1..=fields.len() {
-            write!(
-                w,
-                ",sigma_n_{k}_pa,tau_x_{k}_pa,tau_y_{k}_pa,tau_abs_{k}_pa"
-            )?;
-        }
-        writeln!(w)?;
-        for iy in 0..s.ny {
-            for ix in 0..s.nx {
-                let i = iy * s.nx + ix;
-                write!(
-                    w,
-                    "{:e},{:e},{:e},{:e},{:e}",
-                    ix as f64 * s.dx,
-                    iy as f64 * s.dy,
-                    s.heights[i],
-                    sol.pressure[i],
-                    sol.gap[i]
-                )?;
-                for f in fields {
-                    write!(
-                        w,
-                        ",{:e},{:e},{:e},{:e}",
-                        f.normal[i],
-                        f.shear_x[i],
-                        f.shear_y[i],
-                        f.shear_magnitude(i)
-                    )?;
-                }
-                writeln!(w)?;
-            }
-        }
-        Ok(())
+    fields_csv(path, s, sol, fields, |k| {
+        format!(",sigma_n_{k}_pa,tau_x_{k}_pa,tau_y_{k}_pa,tau_abs_{k}_pa")
     })
 }
 
@@ -443,15 +410,6 @@ fn sliding_object(
     Value::Object(m)
 }
 
-/// A value in the table's units (MPa for a `_pa` key).
-fn show(key: &str, x: f64) -> String {
-    if key.ends_with("_pa") {
-        format!("{} MPa", sig(x * 1e-6, 4))
-    } else {
-        sig(x, 4)
-    }
-}
-
 /// The spread over the realisations of a number by its report key.
 type Spread<'a> = dyn Fn(&str) -> Option<f64> + 'a;
 
@@ -464,21 +422,7 @@ fn add_rows(
     spread: Option<&Spread<'_>>,
 ) {
     for (name, key, p, e) in rows {
-        let ratio = p
-            .filter(|p| p.value != 0.0)
-            .map_or("-".into(), |p| sig(e.value / p.value, 3));
-        let mut row = vec![
-            at.to_string(),
-            name.to_string(),
-            p.map_or("-".into(), |p| show(key, p.value)),
-            show(key, e.value),
-            show(key, e.err),
-        ];
-        if let Some(spread) = spread {
-            row.push(spread(key).map_or("-".into(), |s| show(key, s)));
-        }
-        row.push(ratio);
-        t.add_row(row);
+        t.add_row(row_cells(Some(at), name, key, p, e, spread.map(|s| s(key))));
     }
 }
 
@@ -644,9 +588,7 @@ fn thickness_of(o: &StackOutcome) -> &str {
 
 fn put_rows(m: &mut Map<String, Value>, rows: Vec<CheckRow>) {
     for (_, key, p, e) in rows {
-        m.insert(key.into(), json!(e.value));
-        m.insert(format!("{key}_err"), json!(e.err));
-        m.insert(format!("persson_{key}"), json!(p.map(|p| p.value)));
+        put_row(m, key, p, e);
     }
 }
 
@@ -668,10 +610,7 @@ fn checks_json(v: &StackVerification) -> Value {
 pub fn check_json(x: &StackExact, o: &StackOutcome) -> Value {
     let v = &x.verification;
     let mut m = Map::new();
-    m.insert("map".into(), json!(x.map.display().to_string()));
-    m.insert("nx".into(), json!(v.nx));
-    m.insert("ny".into(), json!(v.ny));
-    m.insert("q_low_d".into(), json!(v.q_low_z));
+    check_head(&mut m, &x.map, v.nx, v.ny, v.q_low_z);
     put_rows(&mut m, top_rows(o, v));
     let interfaces: Vec<Value> = v
         .interfaces
@@ -715,13 +654,7 @@ fn put_exact_rows(
     spread: impl Fn(&str) -> Option<f64>,
 ) {
     for (_, key, p, e) in rows {
-        m.insert(key.into(), json!(e.value));
-        m.insert(format!("{key}_err"), json!(e.err));
-        m.insert(format!("{key}_spread"), json!(spread(key)));
-        m.insert(
-            format!("{key}_ratio"),
-            json!(p.filter(|p| p.value != 0.0).map(|p| e.value / p.value)),
-        );
+        put_exact_row(m, key, p, e, spread(key));
     }
 }
 
@@ -739,29 +672,14 @@ pub fn exact_json(x: &StackExact, o: &StackOutcome) -> Value {
         "verdict".into(),
         json!(if v.pass { "pass" } else { "fail" }),
     );
-    m.insert(
-        "surface".into(),
-        json!(if r.is_some() { "realisations" } else { "map" }),
-    );
-    m.insert("source".into(), json!(x.map.display().to_string()));
-    m.insert("realisations".into(), json!(r.map_or(1, |r| r.count)));
-    m.insert("nx".into(), json!(v.nx));
-    m.insert("ny".into(), json!(v.ny));
-    m.insert(
-        "unresolved_slope_share".into(),
-        json!(r.map(|r| r.grid.unresolved_slope_share)),
-    );
+    let surface = r.map(|r| (r.count, r.grid.unresolved_slope_share));
+    surface_json(&mut m, &x.map, v.nx, v.ny, surface);
     m.insert("thickness_of".into(), json!(thickness_of(o)));
-    let persson = o
-        .min_thickness
-        .as_ref()
-        .and_then(|p| p.thickness)
-        .map(|p| p.value);
     min_thickness_json(
         &mut m,
         x.min_thickness.as_ref(),
         r.map(|r| r.min_thickness_spread),
-        persson,
+        o.min_thickness.as_ref(),
     );
     put_exact_rows(&mut m, top_rows(o, v), |key| {
         r.and_then(|r| r.top_spread(key))
