@@ -15,6 +15,7 @@
 //! O(nx·ny). Rows and strips are processed in parallel with rayon. Transforms are
 //! unnormalised: the multiplier carries the 1/(nx·ny).
 
+use super::pool::{self, Buf, Pool};
 use rayon::prelude::*;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
@@ -49,6 +50,9 @@ pub(crate) trait Real: FftNum {
 
     /// `out ← tmp` after a transform into [`Real::out_row`] (nothing to do for `f64`).
     fn store(tmp: &[Self], out: &mut [f64]);
+
+    /// The pool the half spectra of plans in this type are taken from.
+    fn spectra() -> &'static Pool<Complex<Self>>;
 }
 
 impl Real for f64 {
@@ -65,6 +69,10 @@ impl Real for f64 {
     }
 
     fn store(_: &[Self], _: &mut [f64]) {}
+
+    fn spectra() -> &'static Pool<Complex<Self>> {
+        &pool::C64
+    }
 }
 
 impl Real for f32 {
@@ -86,6 +94,10 @@ impl Real for f32 {
         for (o, t) in out.iter_mut().zip(tmp) {
             *o = f64::from(*t);
         }
+    }
+
+    fn spectra() -> &'static Pool<Complex<Self>> {
+        &pool::C32
     }
 }
 
@@ -109,7 +121,7 @@ pub(crate) struct Fft2<T: Real = f64> {
     col_inv: Arc<dyn Fft<T>>,
     /// Half spectrum, strip-major: strip s (columns s·width.., width w) holds (y, j) at
     /// `s·stride + y·w + j`.
-    spec: Vec<Complex<T>>,
+    spec: Buf<Complex<T>>,
     /// Work buffers of the parallel tasks, kept from call to call (see [`Lease`]).
     pool: Mutex<Vec<Work<T>>>,
 }
@@ -204,7 +216,7 @@ impl<T: Real> Fft2<T> {
             row_inv: rp.plan_fft_inverse(nx),
             col_fwd: cp.plan_fft_forward(ny),
             col_inv: cp.plan_fft_inverse(ny),
-            spec: vec![zero(); nxc.div_ceil(width) * (width * ny + width)],
+            spec: T::spectra().take(nxc.div_ceil(width) * (width * ny + width), zero()),
             pool: Mutex::new(Vec::new()),
         }
     }

@@ -51,6 +51,7 @@ mod fft;
 pub mod free;
 mod multilevel;
 mod passes;
+mod pool;
 mod precond;
 pub mod sliding;
 mod stack;
@@ -273,7 +274,8 @@ impl FieldStats {
             }),
             0,
         ) / nf;
-        let mut work = values.to_vec();
+        let mut work = pool::F64.take(n, 0.0);
+        work.copy_from_slice(values);
         // Nearest-rank order statistics by selection, in increasing rank: after selecting rank
         // r, `work[..r]` holds the r smallest values, so the next rank is selected in the rest.
         let mut done = 0;
@@ -552,6 +554,8 @@ fn solve_from_dyn(
     let start = coarse_start.as_deref().or(start);
     let (nx, ny) = (surface.nx, surface.ny);
     let n = nx * ny;
+    // Work fields from the pool (see `pool`), filled as fresh ones would be.
+    let take = |fill| pool::F64.take(n, fill);
     let mut plan = Fft2::new(nx, ny);
     let kernel = kernel_grid(surface, &compliance)?;
     // Multiplication by K on the half spectrum.
@@ -560,11 +564,11 @@ fn solve_from_dyn(
             *c *= *k;
         }
     };
-    let (mut graw, mut t, mut r) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let (mut graw, mut t, mut r) = (vec![0.0; n], take(0.0), take(0.0));
     // The periodic real-space influence matrix's first column: the response to a unit pressure
     // at pixel 0 (its mean is zero, as the kernel's q = 0 entry); r holds the unit pressure
     // (it is free until the iteration starts).
-    let mut green = vec![0.0; n];
+    let mut green = take(0.0);
     r[0] = 1.0;
     plan.filter(&r, &mut green, multiply);
     r[0] = 0.0;
@@ -574,7 +578,10 @@ fn solve_from_dyn(
         green: &green,
     };
     let mean_h = surface.mean();
-    let h: Vec<f64> = surface.heights.iter().map(|v| v - mean_h).collect();
+    let mut h = take(0.0);
+    for (hi, v) in h.iter_mut().zip(&surface.heights) {
+        *hi = v - mean_h;
+    }
     let h_rms = surface.h_rms();
     let tol = settings.gap_tol * h_rms;
 
@@ -587,8 +594,11 @@ fn solve_from_dyn(
         None => vec![p0; n],
     };
     drop(coarse_start);
-    let mut contact: Vec<bool> = p.iter().map(|&v| v > 0.0).collect();
-    let mut z = vec![0.0; n];
+    let mut contact = pool::BOOL.take(n, false);
+    for (c, &v) in contact.iter_mut().zip(&p) {
+        *c = v > 0.0;
+    }
+    let mut z = take(0.0);
     let mut precond = precond::Preconditioner::new(&kernel, nx, ny);
     let (mut g_old, mut restarts, mut iterations) = (1.0, 0usize, 0);
     // u is recomputed by FFT unless the last update changed few points beyond the linear one:
@@ -646,7 +656,7 @@ fn solve_from_dyn(
         let readmit = step * precond.diagonal();
         let (total, changes) = passes::project(
             &mut p,
-            Some(&mut contact),
+            Some(&mut contact[..]),
             (ps, step, readmit),
             &t,
             &graw,
@@ -664,6 +674,8 @@ fn solve_from_dyn(
             _ => need_fresh = true,
         }
     }
+    // The work fields go back to the pool before the solution's statistics take theirs.
+    drop((t, r, green, z, h, contact, precond, plan, kernel));
     // The gap g = graw − ḡ and the pressure ps·p.
     let gbar = gap.map_or(0.0, |sums| sums.gbar);
     let mut g = graw;
@@ -907,14 +919,14 @@ fn max<const K: usize>(parts: &[[f64; K]], i: usize) -> f64 {
 
 /// The compliance on the (transposed half-) spectrum grid, including the 1/N of the inverse
 /// FFT; the q = 0 entry is 0 (the mean is fixed by the load, see the module docs).
-fn kernel_grid<K>(surface: &Surface, compliance: &K) -> Result<Vec<f64>, Error>
+fn kernel_grid<K>(surface: &Surface, compliance: &K) -> Result<pool::Buf<f64>, Error>
 where
     K: Fn(f64) -> f64 + Sync,
 {
     let (nx, ny) = (surface.nx, surface.ny);
     let (qx, qy) = wavenumbers(nx, ny, surface.dx, surface.dy);
     let inv_n = 1.0 / (nx * ny) as f64;
-    let mut kernel = vec![0.0; (nx / 2 + 1) * ny];
+    let mut kernel = pool::F64.take((nx / 2 + 1) * ny, 0.0);
     kernel
         .par_chunks_mut(ny)
         .enumerate()
@@ -1032,11 +1044,11 @@ where
             };
         }
     });
-    let magnitude: Vec<f64> = shear_x
-        .par_iter()
-        .zip(shear_y.par_iter())
-        .map(|(a, b)| a.hypot(*b))
-        .collect();
+    let mut magnitude = pool::F64.take(n, 0.0);
+    magnitude
+        .par_iter_mut()
+        .zip(shear_x.par_iter().zip(shear_y.par_iter()))
+        .for_each(|(m, (a, b))| *m = a.hypot(*b));
     Ok(InterfaceFields {
         normal_stats: FieldStats::of(&normal),
         shear_stats: FieldStats::of(&magnitude),

@@ -10,6 +10,7 @@
 //! the full-resolution solve then converges to the caller's tolerance as from any other start
 //! (the contact problem has one solution and the stopping test does not depend on the path).
 
+use super::pool::{self, Buf};
 use super::{BemSettings, Surface, solve_from_dyn};
 
 /// Grids with fewer pixels than this are solved from the full contact (a coarse start costs
@@ -28,7 +29,7 @@ pub(super) fn coarse_start(
     compliance: &(dyn Fn(f64) -> f64 + Sync),
     p0: f64,
     settings: &BemSettings,
-) -> Option<Vec<f64>> {
+) -> Option<Buf<f64>> {
     let coarse = coarsen(surface)?;
     let coarse_settings = BemSettings {
         gap_tol: settings.gap_tol.max(COARSE_GAP_TOL),
@@ -54,10 +55,10 @@ fn coarsen(surface: &Surface) -> Option<Surface> {
 }
 
 /// Bilinear prolongation of a coarse `cx × cy` periodic field to the `2cx × 2cy` grid.
-fn prolong(coarse: &[f64], cx: usize, cy: usize) -> Vec<f64> {
+fn prolong(coarse: &[f64], cx: usize, cy: usize) -> Buf<f64> {
     let (nx, ny) = (2 * cx, 2 * cy);
     let at = |x: usize, y: usize| coarse[(y % cy) * cx + x % cx];
-    let mut fine = vec![0.0; nx * ny];
+    let mut fine = pool::F64.take(nx * ny, 0.0);
     for (y, row) in fine.chunks_exact_mut(nx).enumerate() {
         let (y0, odd_y) = (y / 2, y % 2 == 1);
         for (x, v) in row.iter_mut().enumerate() {

@@ -21,13 +21,14 @@
 
 use super::fft::Fft2;
 use super::passes::GapSums;
+use super::pool::{self, Buf};
 use super::{half_spectrum_weight, sum};
 
 /// The multiplier M = 1/K on the half-spectrum grid (same layout as the kernel), including the
 /// 1/N of the inverse FFT, in `f32`; its real-space diagonal (from the `f64` values); the
 /// single-precision plan it is applied with.
 pub(super) struct Preconditioner {
-    multiplier: Vec<f32>,
+    multiplier: Buf<f32>,
     ny: usize,
     diagonal: f64,
     plan: Fft2<f32>,
@@ -43,8 +44,12 @@ impl Preconditioner {
             .enumerate()
             .map(|(kx, col)| half_spectrum_weight(kx, nx) * col.iter().map(|&k| m(k)).sum::<f64>())
             .sum();
+        let mut multiplier = pool::F32.take(kernel.len(), 0.0);
+        for (mi, &k) in multiplier.iter_mut().zip(kernel) {
+            *mi = m(k) as f32;
+        }
         Self {
-            multiplier: kernel.iter().map(|&k| m(k) as f32).collect(),
+            multiplier,
             ny,
             diagonal,
             plan: Fft2::new(nx, ny),
@@ -118,7 +123,12 @@ mod tests {
     const F32_TOL: f64 = 2e-6;
 
     /// A 24 × 16 grid with unequal pixels and the half-space compliance 2/(q E*).
-    fn setup() -> (usize, usize, Vec<f64>, impl Fn(f64) -> f64) {
+    fn setup() -> (
+        usize,
+        usize,
+        crate::bem::pool::Buf<f64>,
+        impl Fn(f64) -> f64,
+    ) {
         let (nx, ny, dx, dy) = (24, 16, 1e-6, 1.5e-6);
         let s = Surface::new(vec![0.0; nx * ny], nx, ny, dx, dy).unwrap();
         let compliance = |q: f64| 2.0 / (q * 3e6);
