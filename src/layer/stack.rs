@@ -742,7 +742,8 @@ thread_local! {
 
 impl Drop for StackCache {
     fn drop(&mut self) {
-        let mut spare = Spare {
+        self.clear_nodes();
+        let spare = Spare {
             index: take(&mut self.index),
             keys: take(&mut self.keys),
             s: take(&mut self.s),
@@ -751,14 +752,14 @@ impl Drop for StackCache {
             base_steps: take(&mut self.base_steps),
             interfaces: take(&mut self.interfaces),
         };
-        spare.clear();
         // After the thread's storage is gone (at its exit) the spare is simply freed.
         let _ = SPARE.try_with(|s| *s.borrow_mut() = Some(spare));
     }
 }
 
-impl Spare {
-    fn clear(&mut self) {
+impl StackCache {
+    /// Forgets every node, keeping the storage.
+    fn clear_nodes(&mut self) {
         self.index.clear();
         self.keys.clear();
         self.s.clear();
@@ -767,9 +768,7 @@ impl Spare {
         self.base_steps.clear();
         self.interfaces.clear();
     }
-}
 
-impl StackCache {
     /// A cache serving `stack`, with the base below its top layer (on the storage of the last
     /// cache dropped on this thread, if any).
     pub fn new(stack: Stack) -> Self {
@@ -840,13 +839,7 @@ impl StackCache {
                     Some(v) if related => v,
                     _ => 0,
                 };
-                self.index.clear();
-                self.keys.clear();
-                self.s.clear();
-                self.fg_generation.clear();
-                self.faces.clear();
-                self.base_steps.clear();
-                self.interfaces.clear();
+                self.clear_nodes();
             }
         }
         self.stack = stack.clone();
