@@ -49,11 +49,10 @@
 
 use super::fft::Fft2;
 use super::{
-    BemSettings, BemSolution, Convergence, InterfaceFields, Surface, check_pressure, chunked,
+    BemSettings, BemSolution, Convergence, InterfaceFields, Surface, check_inputs, chunked,
     direction, measure_gap, project, solution, step_denominator, warm_pressure,
 };
 use crate::error::Error;
-use crate::prec::Termination;
 use crate::quad::gauss_legendre;
 use rayon::prelude::*;
 use realfft::RealFftPlanner;
@@ -474,14 +473,7 @@ pub fn solve_free(
     settings: &BemSettings,
     start: Option<&[f64]>,
 ) -> Result<BemSolution, Error> {
-    check_pressure(p0)?;
-    if !(settings.gap_tol > 0.0 && settings.gap_tol.is_finite()) {
-        return Err(Error::invalid(
-            "gap tolerance",
-            settings.gap_tol,
-            "a finite value > 0 (relative to h_rms)",
-        ));
-    }
+    check_inputs(p0, settings)?;
     let (nx, ny) = (surface.nx, surface.ny);
     let n = nx * ny;
     let kernel = FreeKernel::new(solid, (nx, ny), (surface.dx, surface.dy))?;
@@ -530,26 +522,8 @@ pub fn solve_free(
             [0.0; 0]
         });
     }
-    let status = if gap_rms <= tol && penetration <= tol {
-        Termination::Converged
-    } else {
-        Termination::ToleranceNotReached
-    };
-    let sol = solution(
-        surface,
-        p0,
-        p,
-        g,
-        Convergence {
-            iterations,
-            restarts,
-            gap_rms_in_contact: gap_rms,
-            max_penetration: penetration,
-            tolerance: tol,
-            load_error: 0.0,
-            status,
-        },
-    );
+    let convergence = Convergence::of_iteration(iterations, restarts, gap_rms, penetration, tol);
+    let sol = solution(surface, p0, p, g, convergence);
     Ok(BemSolution {
         boundary: Boundary::Free,
         ..sol

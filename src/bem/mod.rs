@@ -219,6 +219,33 @@ pub struct Convergence {
     pub status: Termination,
 }
 
+impl Convergence {
+    /// How an iteration ended: converged if the gap rms in contact and the penetration are both
+    /// within `tolerance` (m); the load error is set when the solution is formed.
+    fn of_iteration(
+        iterations: usize,
+        restarts: usize,
+        gap_rms: f64,
+        penetration: f64,
+        tolerance: f64,
+    ) -> Self {
+        let status = if gap_rms <= tolerance && penetration <= tolerance {
+            Termination::Converged
+        } else {
+            Termination::ToleranceNotReached
+        };
+        Self {
+            iterations,
+            restarts,
+            gap_rms_in_contact: gap_rms,
+            max_penetration: penetration,
+            tolerance,
+            load_error: 0.0,
+            status,
+        }
+    }
+}
+
 /// Quantile of a field at probability `prob` (nearest rank: the smallest sample value with at
 /// least a fraction `prob` of the samples at or below it).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -419,6 +446,20 @@ fn check_pressure(p0: f64) -> Result<(), Error> {
     }
 }
 
+/// The nominal pressure and the settings' gap tolerance, checked before a solve.
+fn check_inputs(p0: f64, settings: &BemSettings) -> Result<(), Error> {
+    check_pressure(p0)?;
+    if settings.gap_tol > 0.0 && settings.gap_tol.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            "gap tolerance",
+            settings.gap_tol,
+            "a finite value > 0 (relative to h_rms)",
+        ))
+    }
+}
+
 fn check_stack(stack: &Stack) -> Result<(), Error> {
     let d = stack.thickness;
     if d.is_finite() && d > 0.0 {
@@ -539,14 +580,7 @@ fn solve_from_dyn(
     settings: &BemSettings,
     start: Option<&[f64]>,
 ) -> Result<BemSolution, Error> {
-    check_pressure(p0)?;
-    if !(settings.gap_tol > 0.0 && settings.gap_tol.is_finite()) {
-        return Err(Error::invalid(
-            "gap tolerance",
-            settings.gap_tol,
-            "a finite value > 0 (relative to h_rms)",
-        ));
-    }
+    check_inputs(p0, settings)?;
     let coarse_start = match start {
         Some(_) => None,
         None => multilevel::coarse_start(surface, compliance, p0, settings),
@@ -681,26 +715,8 @@ fn solve_from_dyn(
     let mut g = graw;
     g.par_iter_mut().for_each(|gi| *gi -= gbar);
     p.par_iter_mut().for_each(|pi| *pi *= ps);
-    let status = if gap_rms <= tol && penetration <= tol {
-        Termination::Converged
-    } else {
-        Termination::ToleranceNotReached
-    };
-    Ok(solution(
-        surface,
-        p0,
-        p,
-        g,
-        Convergence {
-            iterations,
-            restarts,
-            gap_rms_in_contact: gap_rms,
-            max_penetration: penetration,
-            tolerance: tol,
-            load_error: 0.0,
-            status,
-        },
-    ))
+    let convergence = Convergence::of_iteration(iterations, restarts, gap_rms, penetration, tol);
+    Ok(solution(surface, p0, p, g, convergence))
 }
 
 /// The conjugate-gradient step's denominator Σ_c (r − r̄) t = Σ_c r (t − t̄) over the contact
