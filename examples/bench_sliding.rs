@@ -13,7 +13,9 @@ use coatcheck::material::Library;
 use coatcheck::psd::Spectrum;
 use coatcheck::scene::Scene;
 use std::path::PathBuf;
-use std::time::Instant;
+
+#[path = "common/pairs.rs"]
+mod pairs;
 
 /// Timed pairs after this many warm-up pairs.
 const REPS: usize = 41;
@@ -34,23 +36,15 @@ fn main() {
         let stat = scene.design();
         let mut sliding = scene.design();
         sliding.friction = 0.5;
-        let mut times: Vec<(f64, f64)> = Vec::with_capacity(REPS);
         let (mut es, mut ef) = (0, 0);
-        for i in 0..WARM_UP + REPS {
-            let (ts, e) = timed_check(&spectrum, &stat, scene.settings, d);
-            es = e;
-            let (tf, e) = timed_check(&spectrum, &sliding, scene.settings, d);
-            ef = e;
-            if i >= WARM_UP {
-                times.push((ts, tf));
-            }
-        }
-        let median = |mut v: Vec<f64>| {
-            v.sort_by(f64::total_cmp);
-            v[v.len() / 2]
-        };
-        let ts = median(times.iter().map(|t| t.0).collect());
-        let tf = median(times.iter().map(|t| t.1).collect());
+        let times = pairs::alternating(
+            WARM_UP,
+            REPS,
+            || es = check(&spectrum, &stat, scene.settings, d),
+            || ef = check(&spectrum, &sliding, scene.settings, d),
+        );
+        let ts = pairs::median(times.iter().map(|t| t.0).collect());
+        let tf = pairs::median(times.iter().map(|t| t.1).collect());
         println!(
             "| {name} | {:.2} ms, {es} | {:.2} ms, {ef} | {:.2} |",
             ts / 1e3,
@@ -60,17 +54,15 @@ fn main() {
     }
 }
 
-/// The wall time (µs) of one full check of `design` at thickness `d`, from the checker's
-/// set-up, and the engine evaluations of its d_min search.
-fn timed_check(
+/// One full check of `design` at thickness `d`, from the checker's set-up: the engine
+/// evaluations of its d_min search.
+fn check(
     spectrum: &Spectrum,
     design: &Design,
     settings: coatcheck::prec::Settings,
     d: f64,
-) -> (f64, usize) {
-    let t = Instant::now();
+) -> usize {
     let c = Checker::new(spectrum, design.clone(), settings).unwrap();
     let out = c.run(d).unwrap();
-    let us = t.elapsed().as_secs_f64() * 1e6;
-    (us, out.min_thickness.unwrap().evaluations)
+    out.min_thickness.unwrap().evaluations
 }

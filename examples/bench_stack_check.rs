@@ -16,7 +16,9 @@ use coatcheck::layer::Bilayer;
 use coatcheck::material::Library;
 use coatcheck::scene::Scene;
 use std::path::PathBuf;
-use std::time::Instant;
+
+#[path = "common/pairs.rs"]
+mod pairs;
 
 fn main() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
@@ -34,53 +36,38 @@ fn main() {
         friction: 0.0,
         criteria: stack.criteria,
     };
+    // One full check of each kind (engine set-up, evaluation, checks, d_min search): the
+    // engine evaluations of its d_min search.
+    let run_one = || {
+        let c = Checker::new(&spectrum, one.clone(), scene.settings).expect("valid design");
+        let out = c.run(rubber.thickness).expect("check runs");
+        out.min_thickness.expect("d_min asked for").evaluations
+    };
+    let run_two = || {
+        let c = StackChecker::new(&spectrum, stack.clone(), scene.settings).expect("valid stack");
+        let out = c.run().expect("check runs");
+        out.min_thickness.expect("d_min asked for").evaluations
+    };
     let args: Vec<String> = std::env::args().skip(1).collect();
     if let [which, n] = args.as_slice() {
         let n: usize = n.parse().expect("a number of checks");
         for _ in 0..n {
             match which.as_str() {
-                "one" => {
-                    let c = Checker::new(&spectrum, one.clone(), scene.settings).expect("valid");
-                    c.run(rubber.thickness).expect("check runs");
-                }
-                "two" => {
-                    let c = StackChecker::new(&spectrum, stack.clone(), scene.settings)
-                        .expect("valid stack");
-                    c.run().expect("check runs");
-                }
+                "one" => run_one(),
+                "two" => run_two(),
                 _ => panic!("usage: bench_stack_check [one|two N]"),
-            }
+            };
         }
         return;
     }
     // The two checks alternate, so that both see the same load on a shared machine; the ratio
-    // is the median of the per-pair ratios.
+    // is the median of the per-pair ratios. The first 4 pairs warm up.
     let reps = 41;
     let (mut one_evals, mut two_evals) = (0, 0);
-    let mut times: Vec<(f64, f64)> = Vec::with_capacity(reps);
-    for i in 0..reps + 4 {
-        let t = Instant::now();
-        let c = Checker::new(&spectrum, one.clone(), scene.settings).expect("valid design");
-        let out = c.run(rubber.thickness).expect("check runs");
-        one_evals = out.min_thickness.expect("d_min asked for").evaluations;
-        let one_us = t.elapsed().as_secs_f64() * 1e6;
-        let t = Instant::now();
-        let c = StackChecker::new(&spectrum, stack.clone(), scene.settings).expect("valid stack");
-        let out = c.run().expect("check runs");
-        two_evals = out.min_thickness.expect("d_min asked for").evaluations;
-        let two_us = t.elapsed().as_secs_f64() * 1e6;
-        // The first runs warm up.
-        if i >= 4 {
-            times.push((one_us, two_us));
-        }
-    }
-    let median = |mut v: Vec<f64>| {
-        v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
-    };
-    let one_us = median(times.iter().map(|t| t.0).collect());
-    let two_us = median(times.iter().map(|t| t.1).collect());
-    let ratio = median(times.iter().map(|t| t.1 / t.0).collect());
+    let times = pairs::alternating(4, reps, || one_evals = run_one(), || two_evals = run_two());
+    let one_us = pairs::median(times.iter().map(|t| t.0).collect());
+    let two_us = pairs::median(times.iter().map(|t| t.1).collect());
+    let ratio = pairs::median(times.iter().map(|t| t.1 / t.0).collect());
     println!(
         "one-layer check + d_min (rubber on steel):          {one_us:10.0} µs ({one_evals} d_min evaluations)"
     );
