@@ -1,5 +1,6 @@
 //! Benchmark of the boundary-element contact solver (`coatcheck::bem`):
-//! `cargo run --release --example bench_bem [-- --quick] [-- --sizes 2048,4096] [-- --runs 1]`.
+//! `cargo run --release --example bench_bem [-- --quick] [-- --sizes 2048,4096] [-- --runs 1]
+//! [-- --seed 2]`.
 //!
 //! 1. Solve times (median of runs) of a converged solve on self-affine surfaces at A/A0 ≈ 0.05,
 //!    512² and 1024² (issue 6 targets: ≤ 1 s and ≤ 5 s on 2 cores), for a homogeneous rubber
@@ -103,8 +104,14 @@ fn main() {
             .and_then(|v| v.parse().ok())
             .expect("--runs needs a count")
     });
+    // The surface's random phases (1 unless asked: the figures in the README are for seed 1).
+    let seed: u64 = args.iter().position(|a| a == "--seed").map_or(1, |i| {
+        args.get(i + 1)
+            .and_then(|v| v.parse().ok())
+            .expect("--seed needs an integer")
+    });
     for &n in &sizes {
-        let s = surface(n, n as f64 / 8.0, 1);
+        let s = surface(n, n as f64 / 8.0, seed);
         let q_l = s.q_low();
         for (name, layers, d, p_over) in [
             (
