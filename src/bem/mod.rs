@@ -21,10 +21,13 @@
 //! Constrained conjugate gradients of Polonsky & Keer (Wear 231, 1999, 206–219), load-control
 //! form: conjugate directions on the current contact set, projection to p ≥ 0, re-admission of
 //! penetrating points and rescaling to the mean pressure p0. One deviation: PK restart the
-//! conjugacy whenever points are re-admitted; here the directions stay conjugate and are reset
-//! to the gradient only when they stop being descent directions (Σ g·t ≤ 0 on the contact
-//! set), to the preconditioned gradient. On self-affine surfaces this needs fewer iterations
-//! for the same converged answer: the stopping test below is independent of the path.
+//! conjugacy whenever points are re-admitted; here the directions are reset to the
+//! preconditioned gradient only when the last projection moved more than a share of the
+//! contact set (`RESTART_SHARE`: clamped or re-admitted points) or when they stop being descent
+//! directions (Σ g·t ≤ 0 on the contact set). On self-affine surfaces this needs fewer
+//! iterations for the same converged answer: the stopping test below is independent of the
+//! path. A re-admitted pixel starts at the pressure that would close its own gap, times the
+//! step. While the gap is large the convolutions run in single precision (`SINGLE_ABOVE`).
 //! The conjugate directions are preconditioned with the inverse of the influence operator on the
 //! full grid, a Fourier multiplier 1/K(q) (`precond`), which slows the growth of the iterations
 //! with the size of the contact patches in pixels.
@@ -64,7 +67,7 @@ use crate::prec::{EPS, Estimate, Termination};
 use crate::topography::HeightMap;
 use fft::Fft2;
 use rayon::prelude::*;
-use rustfft::num_complex::Complex64;
+use rustfft::num_complex::{Complex32, Complex64};
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -78,6 +81,18 @@ const REFRESH_EVERY: usize = 32;
 /// their columns of the real-space influence matrix instead of a new FFT convolution (each
 /// column costs one pass over the grid; a convolution costs about as much as a few dozen).
 const SPARSE_MAX: usize = 16;
+
+/// Gap level (relative to h_rms) above which the iteration forms its convolutions (the
+/// displacement and K t) in single precision: their rounding, about 1e-7 of u (a few h_rms),
+/// is then below 1e-2 of the gap being reduced. Once the rms gap and the penetration are both
+/// below it (or the iteration would stop), the rest of the iteration, and every verdict, runs
+/// in double precision from a freshly computed displacement.
+const SINGLE_ABOVE: f64 = 1e-4;
+
+/// Share of the contact set that, clamped or re-admitted in one projection, restarts the
+/// conjugate directions (Polonsky & Keer restart on any re-admission; a few points settling at
+/// the edges of the patches leave the directions useful, a swing of the set does not).
+const RESTART_SHARE: f64 = 0.02;
 
 /// A periodic height map: `heights[iy * nx + ix]` (m), pixel sizes `dx`, `dy` (m).
 #[derive(Debug, Clone, PartialEq)]
@@ -598,6 +613,15 @@ fn solve_from_dyn(
             *c *= *k;
         }
     };
+    let multiply_f32 = |kx: usize, col: &mut [Complex32]| {
+        for (c, k) in col.iter_mut().zip(&kernel[kx * ny..(kx + 1) * ny]) {
+            *c *= *k as f32;
+        }
+    };
+    // The plan of the single-precision start (see `SINGLE_ABOVE`), `None` once it has ended.
+    let mut single = Some(Fft2::<f32>::new(nx, ny));
+    // Iterations made in single precision.
+    let mut single_steps = 0;
     let (mut graw, mut t, mut r) = (vec![0.0; n], take(0.0), take(0.0));
     // The periodic real-space influence matrix's first column: the response to a unit pressure
     // at pixel 0 (its mean is zero, as the kernel's q = 0 entry); r holds the unit pressure
@@ -641,19 +665,41 @@ fn solve_from_dyn(
     // periodic refresh, and every verdict (converged or not) is taken on a freshly computed u.
     let (mut need_fresh, mut since_fresh, mut gap) = (true, 0usize, None);
     let (mut gap_rms, mut penetration);
+    // Points clamped or re-admitted by the last projection.
+    let mut moved = 0usize;
     loop {
         let sums = match gap {
             Some(sums) if !need_fresh => sums,
             _ => {
                 need_fresh = false;
                 since_fresh = 0;
-                passes::fresh(&mut plan, (&p, ps), &mut graw, multiply, (&h, &contact, &t))
+                let fields = (&h[..], &contact[..], &t[..]);
+                match single.as_mut() {
+                    Some(plan) => passes::fresh(plan, (&p, ps), &mut graw, multiply_f32, fields),
+                    None => passes::fresh(&mut plan, (&p, ps), &mut graw, multiply, fields),
+                }
             }
         };
         gap = Some(sums);
         gap_rms = (sums.g2 / sums.n_c).sqrt();
         penetration = sums.pen;
-        if (gap_rms <= tol && penetration <= tol) || iterations >= settings.max_iter {
+        let (within, capped) = (
+            gap_rms <= tol && penetration <= tol,
+            iterations >= settings.max_iter,
+        );
+        if single.is_some()
+            && (within || capped || gap_rms.max(penetration) <= SINGLE_ABOVE * h_rms)
+        {
+            // The rest of the iteration, and every verdict, in double precision.
+            single = None;
+            single_steps = iterations;
+            need_fresh = true;
+            continue;
+        }
+        // A converged answer is the result of a double-precision step (or of none), unless it
+        // is exact (no gap on the contact set, no penetration: nothing a step could improve).
+        let exact = gap_rms == 0.0 && penetration == 0.0;
+        if (within && (single_steps == 0 || iterations > single_steps || exact)) || capped {
             if since_fresh > 0 {
                 need_fresh = true;
                 continue;
@@ -663,7 +709,11 @@ fn solve_from_dyn(
         iterations += 1;
         // r is free until K t is formed: it holds the masked gap the preconditioner filters.
         let (gz, zbar) = precond.apply((&graw, &contact, &sums), &mut r, &mut z);
-        let mut beta = if iterations > 1 && g_old > 0.0 {
+        // A large move of the contact set leaves the old direction conjugate to nothing: restart
+        // from the preconditioned gradient.
+        let set_moved = moved as f64 > RESTART_SHARE * sums.n_c;
+        restarts += usize::from(set_moved && iterations > 1);
+        let mut beta = if iterations > 1 && g_old > 0.0 && !set_moved {
             gz / g_old
         } else {
             0.0
@@ -678,17 +728,28 @@ fn solve_from_dyn(
             beta = 0.0;
             num = gz;
         }
-        let den = passes::conjugate(
-            &mut plan,
-            (&mut t, &mut r),
-            multiply,
-            (&z, zbar, &contact),
-            sums.n_c,
-            beta,
-        );
-        let step = num / positive_denominator("boundary-element contact", den, iterations)?;
-        let readmit = step * precond.diagonal();
-        let (total, changes) = passes::project(
+        let (tr, zc) = ((&mut t[..], &mut r[..]), (&z[..], zbar, &contact[..]));
+        let den = match single.as_mut() {
+            Some(plan) => passes::conjugate(plan, tr, multiply_f32, zc, sums.n_c, beta),
+            None => passes::conjugate(&mut plan, tr, multiply, zc, sums.n_c, beta),
+        };
+        let den = match positive_denominator("boundary-element contact", den, iterations) {
+            Ok(den) => den,
+            Err(_) if single.is_some() => {
+                // K is positive, so this is single precision's rounding (Σ r·t cancelling):
+                // the step is taken again in double precision, from the preconditioned gradient.
+                single = None;
+                single_steps = iterations;
+                (need_fresh, g_old) = (true, 0.0);
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
+        let step = num / den;
+        // A re-admitted pixel gets the pressure that would close its own gap (1/G(0) per unit
+        // gap, G(0) the influence matrix's diagonal), times the step like the rest.
+        let readmit = step / green[0];
+        let (total, moved_now, changes) = passes::project(
             &mut p,
             Some(&mut contact[..]),
             (ps, step, readmit),
@@ -698,6 +759,7 @@ fn solve_from_dyn(
         );
         let scale = p0 * n as f64 / total;
         ps = scale;
+        moved = moved_now;
         match changes {
             Some(ch) if since_fresh < REFRESH_EVERY => {
                 let fields = (&h[..], &r[..], &t[..]);
@@ -709,7 +771,7 @@ fn solve_from_dyn(
         }
     }
     // The work fields go back to the pool before the solution's statistics take theirs.
-    drop((t, r, green, z, h, contact, precond, plan, kernel));
+    drop((t, r, green, z, h, contact, precond, plan, single, kernel));
     // The gap g = graw − ḡ and the pressure ps·p.
     let gbar = gap.map_or(0.0, |sums| sums.gbar);
     let mut g = graw;
@@ -824,7 +886,8 @@ fn project(
     step: f64,
     readmit: f64,
 ) -> (f64, Option<Changes>) {
-    passes::project(p, None, (ps, step, readmit), t, g, 0.0)
+    let (total, _, changes) = passes::project(p, None, (ps, step, readmit), t, g, 0.0);
+    (total, changes)
 }
 
 /// A periodic grid's influence matrix, given by its first column `green` (the response at every

@@ -16,10 +16,10 @@
 //! 37, 1983, 242–247): Σ (x − x̄)² = Σ_rows [Σ_row (x − x̄_row)² + n_row (x̄_row − x̄)²], whose
 //! terms are all non-negative, so no large nearly equal numbers are subtracted.
 
-use super::fft::Fft2;
+use super::fft::{Fft2, Real};
 use super::{Changes, SPARSE_MAX};
 use rayon::prelude::*;
-use rustfft::num_complex::Complex64;
+use rustfft::num_complex::Complex;
 
 /// Per-row gap statistics, see [`gap_row`].
 pub(super) type GapRow = [f64; 7];
@@ -131,8 +131,9 @@ pub(super) fn denominator_row(r: &[f64], t: &[f64], contact: &[bool], tbar: f64)
 
 /// p ← ps·p − step·t on the contact set, projected to p ≥ 0, with penetrating points
 /// (g = graw − ḡ < 0) re-admitted at −readmit·g, and `contact` (if given) set to p > 0; returns
-/// Σ p and, if there are at most [`SPARSE_MAX`], the points clamped or re-admitted with their
-/// change beyond the linear update ps·p − step·t (t is 0 off the contact set), in index order.
+/// Σ p, the number of points clamped or re-admitted and, if there are at most [`SPARSE_MAX`],
+/// those points with their change beyond the linear update ps·p − step·t (t is 0 off the
+/// contact set), in index order.
 pub(super) fn project(
     p: &mut [f64],
     contact: Option<&mut [bool]>,
@@ -140,19 +141,19 @@ pub(super) fn project(
     t: &[f64],
     graw: &[f64],
     gbar: f64,
-) -> (f64, Option<Changes>) {
+) -> (f64, usize, Option<Changes>) {
     const CHUNK: usize = super::PAR_CHUNK;
     let flags: Vec<Option<&mut [bool]>> = match contact {
         Some(c) => c.chunks_mut(CHUNK).map(Some).collect(),
         None => (0..p.len().div_ceil(CHUNK)).map(|_| None).collect(),
     };
-    let parts: Vec<(f64, Changes, bool)> = p
+    let parts: Vec<(f64, Changes, bool, usize)> = p
         .par_chunks_mut(CHUNK)
         .zip(flags)
         .enumerate()
         .map(|(c, (pc, mut fc))| {
             let o = c * CHUNK;
-            let (mut total, mut changes, mut many) = (0.0, Vec::new(), false);
+            let (mut total, mut changes, mut many, mut moved) = (0.0, Vec::new(), false, 0);
             for (k, (pi, (ti, gr))) in pc.iter_mut().zip(t[o..].iter().zip(&graw[o..])).enumerate()
             {
                 *pi *= ps;
@@ -171,23 +172,27 @@ pub(super) fn project(
                     *pi = -readmit * gi;
                     changed = true;
                 }
-                if changed && !many {
-                    changes.push((o + k, *pi - linear));
-                    many = changes.len() > SPARSE_MAX;
+                if changed {
+                    moved += 1;
+                    if !many {
+                        changes.push((o + k, *pi - linear));
+                        many = changes.len() > SPARSE_MAX;
+                    }
                 }
                 if let Some(fc) = fc.as_deref_mut() {
                     fc[k] = *pi > 0.0;
                 }
                 total += *pi;
             }
-            (total, changes, many)
+            (total, changes, many, moved)
         })
         .collect();
     let total = parts.iter().map(|part| part.0).sum();
+    let moved = parts.iter().map(|part| part.3).sum();
     let count: usize = parts.iter().map(|part| part.1.len()).sum();
     let changes = (count <= SPARSE_MAX && !parts.iter().any(|part| part.2))
         .then(|| parts.into_iter().flat_map(|part| part.1).collect());
-    (total, changes)
+    (total, moved, changes)
 }
 
 /// The incremental displacement update in terms of graw = u − h: u ← scale·(u − step·r +
@@ -221,15 +226,15 @@ pub(super) fn update(
 
 /// A fresh displacement: graw = K(ps·p) − h by FFT (`multiply` applies K), with the rows'
 /// gap statistics (contact set and previous direction t) formed in its inverse row pass.
-pub(super) fn fresh<M>(
-    plan: &mut Fft2,
+pub(super) fn fresh<T: Real, M>(
+    plan: &mut Fft2<T>,
     (p, ps): (&[f64], f64),
     graw: &mut [f64],
     multiply: M,
     (h, contact, t): (&[f64], &[bool], &[f64]),
 ) -> GapSums
 where
-    M: Fn(usize, &mut [Complex64]) + Sync,
+    M: Fn(usize, &mut [Complex<T>]) + Sync,
 {
     let nx = plan.nx();
     let rows = plan.filter_scaled_then(p, ps, graw, multiply, |y, _, row| {
@@ -245,8 +250,8 @@ where
 /// The new direction t ← (z − z̄) + β t (on the contact set of `n_c` points, 0 elsewhere; z the
 /// preconditioned gap) formed in the forward row pass of r = K t, and the step's denominator
 /// Σ_c r (t − t̄) in its inverse row pass.
-pub(super) fn conjugate<M>(
-    plan: &mut Fft2,
+pub(super) fn conjugate<T: Real, M>(
+    plan: &mut Fft2<T>,
     (t, r): (&mut [f64], &mut [f64]),
     multiply: M,
     (z, zbar, contact): (&[f64], f64, &[bool]),
@@ -254,7 +259,7 @@ pub(super) fn conjugate<M>(
     beta: f64,
 ) -> f64
 where
-    M: Fn(usize, &mut [Complex64]) + Sync,
+    M: Fn(usize, &mut [Complex<T>]) + Sync,
 {
     let nx = plan.nx();
     let (_, den_rows) = plan.filter_rows(
@@ -367,7 +372,7 @@ mod tests {
             crate::bem::project(&mut p_unfused, 1.3, &t_unfused, &g, step, 0.6 * step);
         let mut p_fused = p.clone();
         let mut flags = vec![false; nx * ny];
-        let (total_fused, changes_fused) = project(
+        let (total_fused, moved, changes_fused) = project(
             &mut p_fused,
             Some(&mut flags),
             (1.3, step, 0.6 * step),
@@ -377,6 +382,15 @@ mod tests {
         );
         assert!(rel(total_fused, total) < 1e-13, "{total_fused} vs {total}");
         assert_eq!(changes_fused.is_some(), changes.is_some());
+        // Moved: clamped (in contact, the linear update ≤ 0) or re-admitted (out, penetrating).
+        let expect_moved = (0..nx * ny)
+            .filter(|&i| {
+                (p[i] > 0.0 && 1.3 * p[i] - step * t_unfused[i] <= 0.0)
+                    || (p[i] == 0.0 && g[i] < 0.0)
+            })
+            .count();
+        assert!(expect_moved > 0);
+        assert_eq!(moved, expect_moved);
         for ((a, b), c) in p_fused.iter().zip(&p_unfused).zip(&flags) {
             assert!((a - b).abs() <= 1e-15 * b.abs().max(1.0), "{a} vs {b}");
             assert_eq!(*c, *a > 0.0);

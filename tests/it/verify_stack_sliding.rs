@@ -594,9 +594,13 @@ fn one_layer_stack_min_thickness_under_friction_is_the_films() {
     let got = stack_min_thickness::min_thickness(&s, &one, mu, &settings).unwrap();
     let (w, g) = (want.thickness().unwrap(), got.thickness().unwrap());
     assert!(!want.search.all_pass_to_floor, "{want:?}");
-    close(g.value, w.value, 1e-12, "d_min");
-    close(g.err, w.err, 1e-9, "d_min error");
-    close(got.grid_err, want.grid_err, 1e-9, "grid error");
+    // The two compliances agree to rounding, but the solves' single-precision start can round
+    // them to different f32 values, so the paths agree to the solves' gap tolerance (1e-6 h_rms),
+    // not to rounding: d_min to 1e-8 (its stated error is 4e-3 of it), the error estimates to
+    // 1e-5 of themselves.
+    close(g.value, w.value, 1e-8, "d_min");
+    close(g.err, w.err, 1e-5, "d_min error");
+    close(got.grid_err, want.grid_err, 1e-5, "grid error");
     assert_eq!(got.search.governing, want.search.governing);
     assert_eq!(got.solves, want.solves);
     let static_d = stack_min_thickness::min_thickness(&s, &one, 0.0, &settings).unwrap();
