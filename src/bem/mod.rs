@@ -89,6 +89,14 @@ const SPARSE_MAX: usize = 16;
 /// in double precision from a freshly computed displacement.
 const SINGLE_ABOVE: f64 = 1e-4;
 
+/// Largest ratio of the kernel's largest to its smallest value (q ≠ 0) for which the start runs
+/// in single precision: f32 rounding of a direction's other modes, ≈ 1e-7 of it, reaches K t
+/// amplified by that ratio, and at 1e6 it costs more iterations than it saves (a full-contact
+/// sinusoid: 2 iterations at a ratio of 1e4, 19 at 1e6, against 2 in double precision). The
+/// half-space on an n² grid spans n/√2 (2896 at 4096²); thin stiff-backed films span far more
+/// and solve in double precision throughout.
+const SINGLE_RANGE: f64 = 1e4;
+
 /// Share of the contact set that, clamped or re-admitted in one projection, restarts the
 /// conjugate directions (Polonsky & Keer restart on any re-admission; a few points settling at
 /// the edges of the patches leave the directions useful, a swing of the set does not).
@@ -618,8 +626,9 @@ fn solve_from_dyn(
             *c *= *k as f32;
         }
     };
-    // The plan of the single-precision start (see `SINGLE_ABOVE`), `None` once it has ended.
-    let mut single = Some(Fft2::<f32>::new(nx, ny));
+    // The plan of the single-precision start (see `SINGLE_ABOVE`), `None` once it has ended or
+    // if the kernel spans too many decades for it (`SINGLE_RANGE`).
+    let mut single = (kernel_range(&kernel) <= SINGLE_RANGE).then(|| Fft2::<f32>::new(nx, ny));
     // Iterations made in single precision.
     let mut single_steps = 0;
     let (mut graw, mut t, mut r) = (vec![0.0; n], take(0.0), take(0.0));
@@ -779,6 +788,22 @@ fn solve_from_dyn(
     p.par_iter_mut().for_each(|pi| *pi *= ps);
     let convergence = Convergence::of_iteration(iterations, restarts, gap_rms, penetration, tol);
     Ok(solution(surface, p0, p, g, convergence))
+}
+
+/// max K / min K over the kernel grid's wavevectors q ≠ 0 (its zero entry is q = 0).
+fn kernel_range(kernel: &[f64]) -> f64 {
+    let (low, high) = kernel
+        .par_iter()
+        .filter(|&&k| k > 0.0)
+        .fold(
+            || (f64::INFINITY, 0.0f64),
+            |(l, h), &k| (l.min(k), h.max(k)),
+        )
+        .reduce(
+            || (f64::INFINITY, 0.0),
+            |(l1, h1), (l2, h2)| (l1.min(l2), h1.max(h2)),
+        );
+    high / low
 }
 
 /// The conjugate-gradient step's denominator Σ_c (r − r̄) t = Σ_c r (t − t̄) over the contact
@@ -1284,6 +1309,30 @@ mod tests {
                     assert_eq!(kernel[kx * ny + ky].to_bits(), want.to_bits(), "{nx}x{ny}");
                 }
             }
+        }
+    }
+
+    #[test]
+    fn a_kernel_spanning_eight_decades_is_solved_in_double_precision() {
+        // Full contact on h = a cos(2π x/L) under a compliance 1e-8 of the half-space's at
+        // |q| < 1.5 q1 (the surface's mode q1 = 2π/L among them) and the half-space's above: in
+        // single precision the rounding of the other modes (≈ 1e-7 of a direction, amplified
+        // 1e8 in K t) would swamp the steps (14 iterations); in double precision (rounding
+        // amplified to ≈ 1e-8) the first step solves it and the second confirms, at the exact
+        // pressure p0 + (a/K(q1)) cos(2π x/L).
+        let (n, dx, a, e_star) = (32, 1e-6, 1e-9, 1e6);
+        let q1 = 2.0 * PI / (n as f64 * dx);
+        let phase = |i: usize| 2.0 * PI * (i % n) as f64 / n as f64;
+        let h = (0..n * n).map(|i| a * phase(i).cos()).collect();
+        let s = Surface::new(h, n, n, dx, dx).unwrap();
+        let k = move |q: f64| 2.0 / (q * e_star) * if q < 1.5 * q1 { 1e-8 } else { 1.0 };
+        let p1 = a / k(q1);
+        let sol = solve_with_compliance(&s, k, 2.0 * p1, &BemSettings::default()).unwrap();
+        assert_eq!(sol.convergence.status, Termination::Converged);
+        assert!(sol.convergence.iterations <= 2, "{:?}", sol.convergence);
+        for (i, p) in sol.pressure.iter().enumerate() {
+            let exact = p1 * (2.0 + phase(i).cos());
+            assert!((p - exact).abs() < 1e-7 * p1, "{i}: {p} vs {exact}");
         }
     }
 
