@@ -27,7 +27,7 @@
 //! directions (Σ g·t ≤ 0 on the contact set). On self-affine surfaces this needs fewer
 //! iterations for the same converged answer: the stopping test below is independent of the
 //! path. A re-admitted pixel starts at the pressure that would close its own gap, times the
-//! step. While the gap is large the convolutions run in single precision (`SINGLE_ABOVE`).
+//! step. While the gap is large the convolutions run in single precision (`convolve`).
 //! The conjugate directions are preconditioned with the inverse of the influence operator on the
 //! full grid, a Fourier multiplier 1/K(q) (`precond`), which slows the growth of the iterations
 //! with the size of the contact patches in pixels.
@@ -50,6 +50,7 @@
 //! Layer stacks (`stack`): the same solve with the stack's compliance and the fields at every
 //! interface ([`solve_stack`], [`stack_interface_fields`]).
 
+mod convolve;
 mod fft;
 pub mod free;
 mod multilevel;
@@ -67,7 +68,7 @@ use crate::prec::{EPS, Estimate, Termination};
 use crate::topography::HeightMap;
 use fft::Fft2;
 use rayon::prelude::*;
-use rustfft::num_complex::{Complex32, Complex64};
+use rustfft::num_complex::Complex64;
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -81,21 +82,6 @@ const REFRESH_EVERY: usize = 32;
 /// their columns of the real-space influence matrix instead of a new FFT convolution (each
 /// column costs one pass over the grid; a convolution costs about as much as a few dozen).
 const SPARSE_MAX: usize = 16;
-
-/// Gap level (relative to h_rms) above which the iteration forms its convolutions (the
-/// displacement and K t) in single precision: their rounding, about 1e-7 of u (a few h_rms),
-/// is then below 1e-2 of the gap being reduced. Once the rms gap and the penetration are both
-/// below it (or the iteration would stop), the rest of the iteration, and every verdict, runs
-/// in double precision from a freshly computed displacement.
-const SINGLE_ABOVE: f64 = 1e-4;
-
-/// Largest ratio of the kernel's largest to its smallest value (q ≠ 0) for which the start runs
-/// in single precision: f32 rounding of a direction's other modes, ≈ 1e-7 of it, reaches K t
-/// amplified by that ratio, and at 1e6 it costs more iterations than it saves (a full-contact
-/// sinusoid: 2 iterations at a ratio of 1e4, 19 at 1e6, against 2 in double precision). The
-/// half-space on an n² grid spans n/√2 (2896 at 4096²); thin stiff-backed films span far more
-/// and solve in double precision throughout.
-const SINGLE_RANGE: f64 = 1e4;
 
 /// Share of the contact set that, clamped or re-admitted in one projection, restarts the
 /// conjugate directions (Polonsky & Keer restart on any re-admission; a few points settling at
@@ -613,32 +599,13 @@ fn solve_from_dyn(
     let n = nx * ny;
     // Work fields from the pool (see `pool`), filled as fresh ones would be.
     let take = |fill| pool::F64.take(n, fill);
-    let mut plan = Fft2::new(nx, ny);
     let kernel = kernel_grid(surface, &compliance)?;
-    // Multiplication by K on the half spectrum.
-    let multiply = |kx: usize, col: &mut [Complex64]| {
-        for (c, k) in col.iter_mut().zip(&kernel[kx * ny..(kx + 1) * ny]) {
-            *c *= *k;
-        }
-    };
-    let multiply_f32 = |kx: usize, col: &mut [Complex32]| {
-        for (c, k) in col.iter_mut().zip(&kernel[kx * ny..(kx + 1) * ny]) {
-            *c *= *k as f32;
-        }
-    };
-    // The plan of the single-precision start (see `SINGLE_ABOVE`), `None` once it has ended or
-    // if the kernel spans too many decades for it (`SINGLE_RANGE`).
-    let mut single = (kernel_range(&kernel) <= SINGLE_RANGE).then(|| Fft2::<f32>::new(nx, ny));
-    // Iterations made in single precision.
-    let mut single_steps = 0;
+    let mut conv = convolve::Convolutions::new(&kernel, nx, ny);
     let (mut graw, mut t, mut r) = (vec![0.0; n], take(0.0), take(0.0));
-    // The periodic real-space influence matrix's first column: the response to a unit pressure
-    // at pixel 0 (its mean is zero, as the kernel's q = 0 entry); r holds the unit pressure
-    // (it is free until the iteration starts).
+    // The periodic real-space influence matrix's first column (its mean is zero, as the
+    // kernel's q = 0 entry); r is free until the iteration starts.
     let mut green = take(0.0);
-    r[0] = 1.0;
-    plan.filter(&r, &mut green, multiply);
-    r[0] = 0.0;
+    conv.first_column(&mut r, &mut green);
     let field = Field {
         nx,
         ny,
@@ -682,11 +649,7 @@ fn solve_from_dyn(
             _ => {
                 need_fresh = false;
                 since_fresh = 0;
-                let fields = (&h[..], &contact[..], &t[..]);
-                match single.as_mut() {
-                    Some(plan) => passes::fresh(plan, (&p, ps), &mut graw, multiply_f32, fields),
-                    None => passes::fresh(&mut plan, (&p, ps), &mut graw, multiply, fields),
-                }
+                conv.fresh((&p, ps), &mut graw, (&h, &contact, &t))
             }
         };
         gap = Some(sums);
@@ -696,19 +659,15 @@ fn solve_from_dyn(
             gap_rms <= tol && penetration <= tol,
             iterations >= settings.max_iter,
         );
-        if single.is_some()
-            && (within || capped || gap_rms.max(penetration) <= SINGLE_ABOVE * h_rms)
-        {
+        if conv.end_single_at(within || capped, (gap_rms, penetration, h_rms), iterations) {
             // The rest of the iteration, and every verdict, in double precision.
-            single = None;
-            single_steps = iterations;
             need_fresh = true;
             continue;
         }
         // A converged answer is the result of a double-precision step (or of none), unless it
         // is exact (no gap on the contact set, no penetration: nothing a step could improve).
         let exact = gap_rms == 0.0 && penetration == 0.0;
-        if (within && (single_steps == 0 || iterations > single_steps || exact)) || capped {
+        if (within && (conv.last_step_double(iterations) || exact)) || capped {
             if since_fresh > 0 {
                 need_fresh = true;
                 continue;
@@ -718,37 +677,17 @@ fn solve_from_dyn(
         iterations += 1;
         // r is free until K t is formed: it holds the masked gap the preconditioner filters.
         let (gz, zbar) = precond.apply((&graw, &contact, &sums), &mut r, &mut z);
-        // A large move of the contact set leaves the old direction conjugate to nothing: restart
-        // from the preconditioned gradient.
         let set_moved = moved as f64 > RESTART_SHARE * sums.n_c;
-        restarts += usize::from(set_moved && iterations > 1);
-        let mut beta = if iterations > 1 && g_old > 0.0 && !set_moved {
-            gz / g_old
-        } else {
-            0.0
-        };
+        let (beta, num, restarted) = coefficient(gz, g_old, sums.gt, iterations > 1 && !set_moved);
+        restarts += usize::from(restarted && iterations > 1);
         g_old = gz;
-        // Σ_c g·t of the new direction t = (z − z̄) + β t.
-        let mut num = gz + beta * sums.gt;
-        if num <= 0.0 && beta != 0.0 {
-            // Not a descent direction on the new contact set: restart from the preconditioned
-            // gradient.
-            restarts += 1;
-            beta = 0.0;
-            num = gz;
-        }
-        let (tr, zc) = ((&mut t[..], &mut r[..]), (&z[..], zbar, &contact[..]));
-        let den = match single.as_mut() {
-            Some(plan) => passes::conjugate(plan, tr, multiply_f32, zc, sums.n_c, beta),
-            None => passes::conjugate(&mut plan, tr, multiply, zc, sums.n_c, beta),
-        };
+        let den = conv.conjugate((&mut t, &mut r), (&z, zbar, &contact), sums.n_c, beta);
         let den = match positive_denominator("boundary-element contact", den, iterations) {
             Ok(den) => den,
-            Err(_) if single.is_some() => {
+            Err(_) if conv.single() => {
                 // K is positive, so this is single precision's rounding (Σ r·t cancelling):
                 // the step is taken again in double precision, from the preconditioned gradient.
-                single = None;
-                single_steps = iterations;
+                conv.end_single(iterations);
                 (need_fresh, g_old) = (true, 0.0);
                 continue;
             }
@@ -780,7 +719,8 @@ fn solve_from_dyn(
         }
     }
     // The work fields go back to the pool before the solution's statistics take theirs.
-    drop((t, r, green, z, h, contact, precond, plan, single, kernel));
+    drop(conv);
+    drop((t, r, green, z, h, contact, precond, kernel));
     // The gap g = graw − ḡ and the pressure ps·p.
     let gbar = gap.map_or(0.0, |sums| sums.gbar);
     let mut g = graw;
@@ -790,20 +730,23 @@ fn solve_from_dyn(
     Ok(solution(surface, p0, p, g, convergence))
 }
 
-/// max K / min K over the kernel grid's wavevectors q ≠ 0 (its zero entry is q = 0).
-fn kernel_range(kernel: &[f64]) -> f64 {
-    let (low, high) = kernel
-        .par_iter()
-        .filter(|&&k| k > 0.0)
-        .fold(
-            || (f64::INFINITY, 0.0f64),
-            |(l, h), &k| (l.min(k), h.max(k)),
-        )
-        .reduce(
-            || (f64::INFINITY, 0.0),
-            |(l1, h1), (l2, h2)| (l1.min(l2), h1.max(h2)),
-        );
-    high / low
+/// The conjugate-gradient coefficient β = gz / g_old (Fletcher–Reeves, preconditioned) and the
+/// step's numerator Σ_c g·t = gz + β·gt of the new direction t = (z − z̄) + β t, and whether the
+/// directions restart from the preconditioned gradient (β = 0): when `conjugate` is false (the
+/// first step, or a large move of the contact set, which leaves the old direction conjugate to
+/// nothing) or when the new direction would not descend on the new contact set.
+fn coefficient(gz: f64, g_old: f64, gt: f64, conjugate: bool) -> (f64, f64, bool) {
+    let beta = if conjugate && g_old > 0.0 {
+        gz / g_old
+    } else {
+        0.0
+    };
+    let num = gz + beta * gt;
+    if beta != 0.0 && num <= 0.0 {
+        (0.0, gz, true)
+    } else {
+        (beta, num, !conjugate)
+    }
 }
 
 /// The conjugate-gradient step's denominator Σ_c (r − r̄) t = Σ_c r (t − t̄) over the contact
